@@ -1,0 +1,107 @@
+//! `stopscan bench`: median wall-clock time of repeated runs, as JSON.
+
+use std::time::Instant;
+
+use anyhow::bail;
+use rand::{RngExt, SeedableRng};
+use serde_json::json;
+use stopscan::offline::corner::worst_case;
+use stopscan::protocol::CostModel;
+use stopscan::protocol::corner::{AngleDistribution, CornerSetup, LastStep, Route};
+use stopscan::strategy::corner::mdp::{CornerMdp, Memory, Reading};
+use stopscan::strategy::corner::{circle, unirec};
+
+use crate::cli::{BenchArgs, BenchTarget, Global, SolverArg};
+use crate::output::emit;
+
+fn median(mut v: Vec<f64>) -> f64 {
+    v.sort_by(f64::total_cmp);
+    let n = v.len();
+    if n % 2 == 1 {
+        v[n / 2]
+    } else {
+        0.5 * (v[n / 2 - 1] + v[n / 2])
+    }
+}
+
+fn time<T>(repeat: usize, mut f: impl FnMut() -> T) -> f64 {
+    let _ = std::hint::black_box(f()); // warm-up
+    median(
+        (0..repeat.max(1))
+            .map(|_| {
+                let t = Instant::now();
+                std::hint::black_box(f());
+                t.elapsed().as_secs_f64()
+            })
+            .collect(),
+    )
+}
+
+pub(crate) fn run(a: &BenchArgs, g: &Global) -> anyhow::Result<()> {
+    let (name, n, secs, ops) = match a.target {
+        BenchTarget::Mdp => {
+            let general = a.solver == SolverArg::General;
+            let n = a.n.unwrap_or(if general { 180 } else { 900 });
+            if n == 0 || n > 20_000 {
+                bail!("--n (stops) must be between 1 and 20000 for mdp, got {n}");
+            }
+            let mdp = CornerMdp {
+                setup: CornerSetup::new(10.0, CostModel::new(2.0, 0.0, 0.5)?)?,
+                step: std::f64::consts::FRAC_PI_2 / n as f64,
+                memory: Memory::Last,
+                reading: Reading::Conditional,
+                belief: AngleDistribution::parse("mix:0.5*normal:30,3+0.5*normal:90,3")?,
+            };
+            if general {
+                (
+                    "mdp2-policy-iteration",
+                    n,
+                    time(a.repeat, || mdp.solve_general().map(|s| s.0)),
+                    1.0,
+                )
+            } else {
+                (
+                    "mdp2-backward-induction",
+                    n,
+                    time(a.repeat, || mdp.solve().map(|p| p.model_value)),
+                    1.0,
+                )
+            }
+        }
+        BenchTarget::Circle => {
+            let n = a.n.unwrap_or(100_000);
+            if n == 0 {
+                bail!("--n (distances) must be positive");
+            }
+            let mut rng = rand_chacha::ChaCha8Rng::seed_from_u64(g.seed);
+            let ds: Vec<f64> = (0..n).map(|_| rng.random_range(0.01..100.0)).collect();
+            (
+                "circle-ratio",
+                n,
+                time(a.repeat, || {
+                    ds.iter().map(|&d| circle::ratio(d)).sum::<f64>()
+                }),
+                n as f64,
+            )
+        }
+        BenchTarget::Ratio => {
+            let n = a.n.unwrap_or(1000);
+            if n < 2 {
+                bail!("--n (stops) must be at least 2");
+            }
+            let delta = std::f64::consts::FRAC_PI_2 / n as f64;
+            let setup = CornerSetup::new(1.0 / delta, CostModel::default())?;
+            let list = unirec(delta * (1.0 - 1e-9), Route::Arc, LastStep::Capped)?;
+            (
+                "worst-case-ratio",
+                list.len(),
+                time(a.repeat.max(101), || worst_case(&list, &setup).worst_ratio),
+                1.0,
+            )
+        }
+    };
+    let value = json!({"name": name, "n": n, "seconds_median": secs, "per_second": ops / secs, "repeat": a.repeat});
+    emit(g, &value, true, |w| {
+        writeln!(w, "{}", serde_json::to_string(&value).unwrap_or_default())
+    })
+}

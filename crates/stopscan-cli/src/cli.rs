@@ -1,0 +1,281 @@
+//! The command line, declared with clap.
+
+use std::path::PathBuf;
+
+use clap::{Args, Parser, Subcommand, ValueEnum};
+
+/// Where a robot should stop and scan when every scan costs time.
+///
+/// With no command, runs the built-in demo: the circle strategy at a few distances and the
+/// four corner-paper strategies on one belief, writing `stopscan-out/`.
+#[derive(Debug, Parser)]
+#[command(name = "stopscan", version, about, long_about = None)]
+pub(crate) struct Cli {
+    #[command(flatten)]
+    pub(crate) global: Global,
+    #[command(subcommand)]
+    pub(crate) command: Option<Command>,
+}
+
+/// Flags every command accepts.
+#[derive(Debug, Args)]
+pub(crate) struct Global {
+    /// Output format.
+    #[arg(long, value_enum, global = true, default_value_t = Format::Table)]
+    pub(crate) format: Format,
+    /// Seed for everything random (Monte Carlo, random restarts, random benchmark inputs).
+    #[arg(long, global = true, default_value_t = 0)]
+    pub(crate) seed: u64,
+    /// Where results go: the JSON result file, or a directory for commands that draw pictures
+    /// (the demo, `reproduce`, `corner policy`, `corner circle`, `corner thresholds`).
+    #[arg(long, global = true)]
+    pub(crate) out: Option<PathBuf>,
+}
+
+#[derive(Debug, Clone, Copy, PartialEq, Eq, ValueEnum)]
+pub(crate) enum Format {
+    /// Aligned text for people.
+    Table,
+    /// One JSON object.
+    Json,
+}
+
+#[derive(Debug, Subcommand)]
+pub(crate) enum Command {
+    /// Looking around a corner: circle strategy, competitive ratios, MDP policies.
+    Corner {
+        #[command(subcommand)]
+        command: CornerCommand,
+    },
+    /// Reproduce a paper table or figure: the paper's value beside ours.
+    Reproduce(ReproduceArgs),
+    /// Throughput figures as JSON.
+    Bench(BenchArgs),
+}
+
+#[derive(Debug, Subcommand)]
+pub(crate) enum CornerCommand {
+    /// The 2-competitive circle strategy at distance D: ratio c(D), steps, scan points.
+    Circle {
+        /// Distance to the corner in units of v·τ (scan cost 1, speed 1).
+        #[arg(long)]
+        distance: f64,
+    },
+    /// Distances at which the circle strategy needs one more scan (the circle paper's Table 1).
+    Thresholds {
+        /// How many thresholds (0 to count−1 intermediate scans).
+        #[arg(long, default_value_t = 6)]
+        count: usize,
+    },
+    /// Globally optimal scan points for K intermediate scans, anywhere in the plane.
+    Optimal {
+        /// Distance to the corner in units of v·τ.
+        #[arg(long)]
+        distance: f64,
+        /// Number of intermediate scans.
+        #[arg(long)]
+        scans: usize,
+    },
+    /// Theorem 1: run the circle recursion with a ratio below 2 and watch it collapse.
+    Collapse {
+        /// The ratio c to try.
+        #[arg(long)]
+        ratio: f64,
+        /// Distance (default 10/(2 − c), far beyond the proof's 1/(2 − c)).
+        #[arg(long)]
+        distance: Option<f64>,
+    },
+    /// The exact worst-case competitive ratio of a strategy at step δ = τv/D.
+    Ratio(RatioArgs),
+    /// The optimal MDP policy for a belief, its stops, expected time and image.
+    Policy(PolicyArgs),
+    /// Run strategies against edges drawn from a true distribution.
+    Simulate(SimulateArgs),
+}
+
+#[derive(Debug, Clone, Copy, PartialEq, Eq, ValueEnum)]
+pub(crate) enum RatioStrategy {
+    /// Scans at δ, 2δ, 3δ, … (corner paper, Table I).
+    Unirec,
+    /// Scans at exponentially spaced stops (corner paper, Table I).
+    Exprec,
+    /// The circle paper's strategy at distance d = 1/δ.
+    Circle,
+    /// The stops given with --stops-deg.
+    Stops,
+}
+
+#[derive(Debug, Args)]
+pub(crate) struct RatioArgs {
+    /// The strategy.
+    #[arg(long, value_enum)]
+    pub(crate) strategy: RatioStrategy,
+    /// δ = τ·v/D: the angle (radians) travelled on the circle in one scan time.
+    #[arg(long)]
+    pub(crate) delta: f64,
+    /// Stop angles in degrees for --strategy stops, comma-separated, increasing.
+    #[arg(long, value_delimiter = ',')]
+    pub(crate) stops_deg: Vec<f64>,
+    #[command(flatten)]
+    pub(crate) readings: Readings,
+}
+
+/// The two readings of the corner paper's stop lists.
+#[derive(Debug, Args, Clone, Copy)]
+pub(crate) struct Readings {
+    /// How a last step past the corner is charged.
+    #[arg(long, value_enum, default_value_t = LastStepArg::Capped)]
+    pub(crate) last_step: LastStepArg,
+    /// Which EXPREC: Table I (δ, 2δ, 4δ, …) or the appendix (δ, 3δ, 7δ, …).
+    #[arg(long, value_enum, default_value_t = ExprecArg::TableI)]
+    pub(crate) exprec: ExprecArg,
+    /// Route between stops (the circle strategy always drives chords).
+    #[arg(long, value_enum, default_value_t = RouteArg::Arc)]
+    pub(crate) route: RouteArg,
+}
+
+#[derive(Debug, Clone, Copy, PartialEq, Eq, ValueEnum)]
+pub(crate) enum LastStepArg {
+    /// Stop at the corner; charge what was driven.
+    Capped,
+    /// Charge the nominal angle, as the paper's formula does (arc route only).
+    Nominal,
+}
+
+#[derive(Debug, Clone, Copy, PartialEq, Eq, ValueEnum)]
+pub(crate) enum ExprecArg {
+    /// Stops at δ, 2δ, 4δ, 8δ, …
+    TableI,
+    /// Stops at δ, 3δ, 7δ, 15δ, …
+    Appendix,
+}
+
+#[derive(Debug, Clone, Copy, PartialEq, Eq, ValueEnum)]
+pub(crate) enum RouteArg {
+    /// Along the circle.
+    Arc,
+    /// Along straight chords.
+    Chord,
+}
+
+/// The robot and its cost model (the corner paper's experiment by default).
+#[derive(Debug, Args, Clone, Copy)]
+pub(crate) struct SetupArgs {
+    /// Distance to the corner, metres.
+    #[arg(long, default_value_t = 10.0)]
+    pub(crate) distance: f64,
+    /// Seconds per scan (τ).
+    #[arg(long, default_value_t = 2.0)]
+    pub(crate) scan_time: f64,
+    /// Seconds per move between stops.
+    #[arg(long, default_value_t = 0.0)]
+    pub(crate) move_time: f64,
+    /// Metres per second (v).
+    #[arg(long, default_value_t = 0.5)]
+    pub(crate) speed: f64,
+}
+
+#[derive(Debug, Clone, Copy, PartialEq, Eq, ValueEnum)]
+pub(crate) enum MemoryArg {
+    /// MDP1: states s_i, s'_i.
+    None,
+    /// MDP2: states s_ij (last scan at stop j).
+    Last,
+}
+
+#[derive(Debug, Clone, Copy, PartialEq, Eq, ValueEnum)]
+pub(crate) enum ReadingArg {
+    /// Bayes-correct P(θ ≤ iδ | θ > jδ).
+    Conditional,
+    /// The printed P(jδ ≤ θ ≤ iδ).
+    Literal,
+}
+
+#[derive(Debug, Clone, Copy, PartialEq, Eq, ValueEnum)]
+pub(crate) enum SolverArg {
+    /// Exact backward induction (acyclic once the self-loop is removed).
+    Backward,
+    /// General sparse policy iteration on the full MDP.
+    General,
+}
+
+#[derive(Debug, Args)]
+pub(crate) struct PolicyArgs {
+    /// Belief in degrees: uniform:0,180 | normal:60,5 | mix:0.5*normal:30,3+0.5*normal:90,3 |
+    /// histogram:FILE | observed:FILE[,BUCKET_DEG].
+    #[arg(long)]
+    pub(crate) belief: String,
+    /// MDP1 (none) or MDP2 (last).
+    #[arg(long, value_enum, default_value_t = MemoryArg::Last)]
+    pub(crate) memory: MemoryArg,
+    /// Stop spacing on the circle, degrees.
+    #[arg(long, default_value_t = 5.0)]
+    pub(crate) step_deg: f64,
+    /// How the transition probabilities are read.
+    #[arg(long, value_enum, default_value_t = ReadingArg::Conditional)]
+    pub(crate) reading: ReadingArg,
+    /// Which solver.
+    #[arg(long, value_enum, default_value_t = SolverArg::Backward)]
+    pub(crate) solver: SolverArg,
+    #[command(flatten)]
+    pub(crate) setup: SetupArgs,
+}
+
+#[derive(Debug, Args)]
+pub(crate) struct SimulateArgs {
+    /// Strategies, comma-separated: unirec, exprec, policy1, policy2, circle, or all.
+    #[arg(long, value_delimiter = ',', default_value = "all")]
+    pub(crate) strategy: Vec<String>,
+    /// What the robot believes (degrees, as for `corner policy`).
+    #[arg(long, default_value = "uniform:0,180")]
+    pub(crate) belief: String,
+    /// What the world draws θ from (defaults to the belief).
+    #[arg(long)]
+    pub(crate) truth: Option<String>,
+    /// Monte Carlo samples.
+    #[arg(long, default_value_t = 1000)]
+    pub(crate) samples: usize,
+    /// MDP stop spacing, degrees.
+    #[arg(long, default_value_t = 5.0)]
+    pub(crate) step_deg: f64,
+    #[command(flatten)]
+    pub(crate) setup: SetupArgs,
+    #[command(flatten)]
+    pub(crate) readings: Readings,
+}
+
+#[derive(Debug, Args)]
+pub(crate) struct ReproduceArgs {
+    /// corner-table-2, corner-table-3, corner-table-4, corner-fig-4, corner-fig-6,
+    /// corner-fig-7, corner-fig-8, circle-table-1, circle-fig-7, or all.
+    pub(crate) id: String,
+    /// Monte Carlo samples where the paper used sampling.
+    #[arg(long, default_value_t = 1000)]
+    pub(crate) samples: usize,
+}
+
+#[derive(Debug, Clone, Copy, PartialEq, Eq, ValueEnum)]
+pub(crate) enum BenchTarget {
+    /// MDP2 backward induction (or policy iteration with --solver general).
+    Mdp,
+    /// c(d) for many random distances.
+    Circle,
+    /// The exact worst-case ratio of a long stop list.
+    Ratio,
+}
+
+#[derive(Debug, Args)]
+pub(crate) struct BenchArgs {
+    /// What to measure.
+    #[arg(value_enum)]
+    pub(crate) target: BenchTarget,
+    /// Problem size: stops (mdp, ratio) or distances (circle).
+    #[arg(long)]
+    pub(crate) n: Option<usize>,
+    /// Timed repetitions; the median is reported.
+    #[arg(long, default_value_t = 15)]
+    pub(crate) repeat: usize,
+    /// MDP solver.
+    #[arg(long, value_enum, default_value_t = SolverArg::Backward)]
+    pub(crate) solver: SolverArg,
+}

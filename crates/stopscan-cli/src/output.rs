@@ -1,0 +1,118 @@
+//! Writing results: aligned tables for people, JSON for programs, files written atomically.
+
+use std::io::Write;
+use std::path::Path;
+
+use anyhow::Context;
+use serde::Serialize;
+
+use crate::cli::{Format, Global};
+
+/// A plain aligned text table.
+pub(crate) struct Table {
+    header: Vec<String>,
+    rows: Vec<Vec<String>>,
+}
+
+impl Table {
+    pub(crate) fn new(header: &[&str]) -> Self {
+        Self {
+            header: header.iter().map(|s| (*s).to_string()).collect(),
+            rows: Vec::new(),
+        }
+    }
+
+    pub(crate) fn row(&mut self, cells: Vec<String>) {
+        self.rows.push(cells);
+    }
+
+    pub(crate) fn write(&self, w: &mut dyn Write) -> std::io::Result<()> {
+        let n = self.header.len();
+        let mut width = vec![0; n];
+        for r in std::iter::once(&self.header).chain(&self.rows) {
+            for (k, c) in r.iter().enumerate().take(n) {
+                width[k] = width[k].max(c.chars().count());
+            }
+        }
+        let line = |w: &mut dyn Write, r: &[String]| -> std::io::Result<()> {
+            let cells: Vec<String> = r
+                .iter()
+                .enumerate()
+                .map(|(k, c)| {
+                    let pad = width[k].saturating_sub(c.chars().count());
+                    if k == 0 {
+                        format!("{c}{}", " ".repeat(pad))
+                    } else {
+                        format!("{}{c}", " ".repeat(pad))
+                    }
+                })
+                .collect();
+            writeln!(w, "{}", cells.join("  ").trim_end())
+        };
+        line(w, &self.header)?;
+        writeln!(
+            w,
+            "{}",
+            width
+                .iter()
+                .map(|&x| "-".repeat(x))
+                .collect::<Vec<_>>()
+                .join("  ")
+        )?;
+        for r in &self.rows {
+            line(w, r)?;
+        }
+        Ok(())
+    }
+}
+
+/// Formats a float with `digits` decimals, `-` for missing or non-finite values.
+pub(crate) fn num(v: Option<f64>, digits: usize) -> String {
+    match v {
+        Some(x) if x.is_finite() => format!("{x:.digits$}"),
+        Some(x) if x.is_infinite() => {
+            if x > 0.0 {
+                "inf".into()
+            } else {
+                "-inf".into()
+            }
+        }
+        _ => "-".into(),
+    }
+}
+
+/// Writes `value` as pretty JSON to `path`, through a temporary file and a rename, so that a
+/// crash never leaves a half-written result in place of a good one.
+pub(crate) fn write_json_atomic<T: Serialize>(path: &Path, value: &T) -> anyhow::Result<()> {
+    if let Some(dir) = path.parent().filter(|d| !d.as_os_str().is_empty()) {
+        std::fs::create_dir_all(dir)
+            .with_context(|| format!("cannot create directory {}", dir.display()))?;
+    }
+    let tmp = path.with_extension("json.tmp");
+    let text = serde_json::to_string_pretty(value)?;
+    std::fs::write(&tmp, text + "\n").with_context(|| format!("cannot write {}", tmp.display()))?;
+    std::fs::rename(&tmp, path)
+        .with_context(|| format!("cannot move {} to {}", tmp.display(), path.display()))?;
+    Ok(())
+}
+
+/// Prints a result as JSON or as a table, and writes the JSON to `--out` for commands whose
+/// `--out` is a file.
+pub(crate) fn emit<T: Serialize>(
+    g: &Global,
+    value: &T,
+    out_is_file: bool,
+    table: impl FnOnce(&mut dyn Write) -> std::io::Result<()>,
+) -> anyhow::Result<()> {
+    let stdout = std::io::stdout();
+    let mut w = stdout.lock();
+    match g.format {
+        Format::Json => writeln!(w, "{}", serde_json::to_string_pretty(value)?)?,
+        Format::Table => table(&mut w)?,
+    }
+    w.flush()?;
+    if out_is_file && let Some(path) = &g.out {
+        write_json_atomic(path, value)?;
+    }
+    Ok(())
+}

@@ -1,0 +1,4 @@
+//! General algorithms with no robot concepts in them.
+
+pub mod mdp;
+pub mod nelder_mead;

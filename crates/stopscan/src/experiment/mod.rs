@@ -1,0 +1,103 @@
+//! Sweeps, Monte Carlo and paper reproductions: seeded, parallel, deterministic.
+
+pub mod corner;
+
+use serde::{Deserialize, Serialize};
+
+use crate::render::LineChart;
+use crate::strategy::corner::mdp::Cell;
+
+/// One compared number: the paper's value beside ours.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct Row {
+    /// What is compared.
+    pub label: String,
+    /// The paper's value, when the paper prints one.
+    pub paper: Option<f64>,
+    /// Our value (exact where the quantity is an expectation).
+    pub ours: f64,
+    /// `(ours − paper) / |paper|`.
+    pub rel_diff: Option<f64>,
+    /// Our Monte Carlo estimate with the paper's sample count, when the paper's value is one.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub monte_carlo: Option<MonteCarlo>,
+}
+
+impl Row {
+    /// A row; `rel_diff` is computed.
+    pub fn new(label: impl Into<String>, paper: Option<f64>, ours: f64) -> Self {
+        let rel_diff = paper.map(|p| (ours - p) / p.abs());
+        Self {
+            label: label.into(),
+            paper,
+            ours,
+            rel_diff,
+            monte_carlo: None,
+        }
+    }
+
+    /// Attaches a Monte Carlo estimate.
+    #[must_use]
+    pub fn with_monte_carlo(mut self, mc: MonteCarlo) -> Self {
+        self.monte_carlo = Some(mc);
+        self
+    }
+}
+
+/// A Monte Carlo mean with its standard error.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+pub struct MonteCarlo {
+    /// Sample mean.
+    pub mean: f64,
+    /// Standard error of the mean.
+    pub std_err: f64,
+    /// Number of samples.
+    pub samples: usize,
+}
+
+/// A reproduced table or figure.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct Reproduction {
+    /// The identifier (`corner-table-2`, …).
+    pub id: String,
+    /// The model choices made, one sentence each.
+    pub model: Vec<String>,
+    /// The compared numbers.
+    pub rows: Vec<Row>,
+    /// Findings and explanations where numbers differ.
+    pub notes: Vec<String>,
+    /// Charts to write with `--out`.
+    #[serde(skip)]
+    pub charts: Vec<(String, LineChart)>,
+    /// Policy images to write with `--out`.
+    #[serde(skip)]
+    pub images: Vec<(String, String, Vec<Vec<Cell>>)>,
+}
+
+/// Why an experiment could not run.
+#[derive(Debug, thiserror::Error)]
+#[non_exhaustive]
+pub enum ExperimentError {
+    /// The identifier is not known; the message lists the known ones.
+    #[error("unknown reproduction {0:?}; known: {1}")]
+    UnknownId(String, String),
+    /// A model piece was rejected.
+    #[error("{0}")]
+    Model(String),
+    /// A simulated strategy misbehaved.
+    #[error(transparent)]
+    Sim(#[from] crate::sim::corner::SimError),
+}
+
+/// Seeds one sample's generator from the run seed and the sample index, so results do not
+/// depend on how samples are spread over threads.
+pub fn sample_seed(seed: u64, index: u64) -> u64 {
+    // SplitMix64 finaliser over the pair.
+    let mut z = seed
+        ^ index
+            .wrapping_mul(0x9E37_79B9_7F4A_7C15)
+            .wrapping_add(0xD1B5_4A32_D192_ED03);
+    z = (z ^ (z >> 30)).wrapping_mul(0xBF58_476D_1CE4_E5B9);
+    z = (z ^ (z >> 27)).wrapping_mul(0x94D0_49BB_1331_11EB);
+    z ^ (z >> 31)
+}

@@ -1,0 +1,3 @@
+//! Optima and bounds against which online strategies are measured.
+
+pub mod corner;

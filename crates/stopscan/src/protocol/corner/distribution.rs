@@ -1,0 +1,477 @@
+//! Beliefs and truths about the hidden edge angle θ ∈ [0, π].
+//!
+//! The corner paper models the robot's belief as a distribution `P(θ)`: a truncated Gaussian
+//! (rectilinear buildings), a uniform (no prior knowledge), mixtures, or a histogram of the
+//! angles observed so far. Every distribution here has an exact CDF, so expected times are
+//! computed exactly, not sampled.
+
+use std::f64::consts::PI;
+use std::path::Path;
+
+use rand::Rng;
+use rand::RngExt;
+use serde::{Deserialize, Serialize};
+
+/// A distribution of the edge angle θ on [0, π] (radians).
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(tag = "kind", rename_all = "snake_case")]
+pub enum AngleDistribution {
+    /// Uniform on `[lo, hi]`.
+    Uniform {
+        /// Lower end, radians.
+        lo: f64,
+        /// Upper end, radians.
+        hi: f64,
+    },
+    /// A Gaussian truncated to [0, π] and renormalised.
+    Normal {
+        /// Mean, radians.
+        mean: f64,
+        /// Standard deviation, radians.
+        sd: f64,
+    },
+    /// A weighted mixture; weights sum to one.
+    Mixture {
+        /// `(weight, component)` pairs.
+        parts: Vec<(f64, AngleDistribution)>,
+    },
+    /// Piecewise uniform over disjoint buckets `[lo, hi]` with probabilities summing to one.
+    Histogram {
+        /// `(lo, hi, probability)` for each bucket, sorted and disjoint.
+        buckets: Vec<(f64, f64, f64)>,
+    },
+}
+
+/// Why a distribution or its specification was rejected.
+#[derive(Debug, Clone, PartialEq, thiserror::Error)]
+#[non_exhaustive]
+pub enum InvalidDistribution {
+    /// The text is not one of `uniform:LO,HI`, `normal:MEAN,SD`, `mix:W*SPEC+W*SPEC...`,
+    /// `histogram:FILE` or `observed:FILE[,BUCKET]` (degrees).
+    #[error("cannot read distribution {spec:?}: {reason}")]
+    Spec {
+        /// The specification as given.
+        spec: String,
+        /// What is wrong with it.
+        reason: String,
+    },
+    /// A histogram or observation file is malformed; the line number is 1-based.
+    #[error("{file}:{line}: {reason}")]
+    File {
+        /// The file.
+        file: String,
+        /// The line (0 when the whole file is at fault).
+        line: usize,
+        /// What is wrong.
+        reason: String,
+    },
+    /// The parameters do not define a distribution on [0°, 180°].
+    #[error("{0}")]
+    Parameters(String),
+}
+
+impl AngleDistribution {
+    /// Uniform on `[lo, hi]` radians, validated.
+    ///
+    /// # Errors
+    /// If the interval is empty or leaves [0, π].
+    pub fn uniform(lo: f64, hi: f64) -> Result<Self, InvalidDistribution> {
+        if !(lo.is_finite() && hi.is_finite() && 0.0 <= lo && lo < hi && hi <= PI + 1e-12) {
+            return Err(InvalidDistribution::Parameters(format!(
+                "uniform needs 0 <= lo < hi <= 180 degrees, got [{}, {}]",
+                lo.to_degrees(),
+                hi.to_degrees()
+            )));
+        }
+        Ok(Self::Uniform { lo, hi: hi.min(PI) })
+    }
+
+    /// A Gaussian truncated to [0, π], validated (radians).
+    ///
+    /// # Errors
+    /// If the standard deviation is not positive or the mass inside [0, π] is negligible.
+    pub fn normal(mean: f64, sd: f64) -> Result<Self, InvalidDistribution> {
+        if !(mean.is_finite() && sd.is_finite() && sd > 0.0) {
+            return Err(InvalidDistribution::Parameters(format!(
+                "normal needs a finite mean and a positive standard deviation, got {}, {}",
+                mean.to_degrees(),
+                sd.to_degrees()
+            )));
+        }
+        if normal_cdf((PI - mean) / sd) - normal_cdf(-mean / sd) < 1e-12 {
+            return Err(InvalidDistribution::Parameters(format!(
+                "normal({}, {}) has no mass in [0, 180] degrees",
+                mean.to_degrees(),
+                sd.to_degrees()
+            )));
+        }
+        Ok(Self::Normal { mean, sd })
+    }
+
+    /// A mixture with weights normalised to one.
+    ///
+    /// # Errors
+    /// If a weight is negative or all are zero.
+    pub fn mixture(parts: Vec<(f64, AngleDistribution)>) -> Result<Self, InvalidDistribution> {
+        let total: f64 = parts.iter().map(|p| p.0).sum();
+        if parts.is_empty()
+            || parts.iter().any(|p| !(p.0.is_finite() && p.0 >= 0.0))
+            || total <= 0.0
+        {
+            return Err(InvalidDistribution::Parameters(
+                "mixture weights must be non-negative with a positive sum".into(),
+            ));
+        }
+        Ok(Self::Mixture {
+            parts: parts.into_iter().map(|(w, d)| (w / total, d)).collect(),
+        })
+    }
+
+    /// A histogram from `(lo, hi, weight)` buckets in radians; weights are normalised.
+    ///
+    /// # Errors
+    /// If buckets are empty, overlap, leave [0, π] or the weights do not have a positive sum.
+    pub fn histogram(mut buckets: Vec<(f64, f64, f64)>) -> Result<Self, InvalidDistribution> {
+        buckets.sort_by(|a, b| a.0.total_cmp(&b.0));
+        let total: f64 = buckets.iter().map(|b| b.2).sum();
+        if buckets.is_empty() || !(total.is_finite() && total > 0.0) {
+            return Err(InvalidDistribution::Parameters(
+                "a histogram needs buckets with a positive total weight".into(),
+            ));
+        }
+        let mut prev_hi = 0.0_f64;
+        for &(lo, hi, w) in &buckets {
+            if !(lo.is_finite() && hi.is_finite() && lo < hi && lo >= prev_hi - 1e-12)
+                || hi > PI + 1e-9
+                || !(w.is_finite() && w >= 0.0)
+            {
+                return Err(InvalidDistribution::Parameters(format!(
+                    "histogram bucket [{}, {}] with weight {w} is empty, overlaps another, leaves \
+                     [0, 180] degrees or has a negative weight",
+                    lo.to_degrees(),
+                    hi.to_degrees()
+                )));
+            }
+            prev_hi = hi;
+        }
+        Ok(Self::Histogram {
+            buckets: buckets
+                .into_iter()
+                .map(|(l, h, w)| (l, h.min(PI), w / total))
+                .collect(),
+        })
+    }
+
+    /// The corner paper's learning idea: a histogram of the angles observed so far, with
+    /// buckets of width `bucket` over [0, π] and a pseudo-count added to every bucket so that
+    /// no angle is ever believed impossible.
+    ///
+    /// # Errors
+    /// If the bucket width is not in (0, π] or an angle lies outside [0, π].
+    pub fn from_observations(
+        angles: &[f64],
+        bucket: f64,
+        pseudo_count: f64,
+    ) -> Result<Self, InvalidDistribution> {
+        if !(bucket.is_finite() && bucket > 0.0 && bucket <= PI) {
+            return Err(InvalidDistribution::Parameters(format!(
+                "bucket width must be in (0, 180] degrees, got {}",
+                bucket.to_degrees()
+            )));
+        }
+        let n = (PI / bucket - 1e-9).ceil() as usize;
+        let mut counts = vec![pseudo_count.max(0.0); n];
+        for &a in angles {
+            if !(0.0..=PI).contains(&a) {
+                return Err(InvalidDistribution::Parameters(format!(
+                    "observed angle {} is outside [0, 180] degrees",
+                    a.to_degrees()
+                )));
+            }
+            counts[((a / bucket) as usize).min(n - 1)] += 1.0;
+        }
+        let buckets = (0..n).map(|k| {
+            (
+                k as f64 * bucket,
+                ((k + 1) as f64 * bucket).min(PI),
+                counts[k],
+            )
+        });
+        Self::histogram(buckets.collect())
+    }
+
+    /// The distribution discretised into buckets of width `bucket` (each bucket keeps its exact
+    /// mass and is uniform inside), as the corner paper's Fig. 5 distributions are.
+    ///
+    /// # Errors
+    /// If the bucket width is not in (0, π].
+    pub fn bucketed(&self, bucket: f64) -> Result<Self, InvalidDistribution> {
+        if !(bucket.is_finite() && bucket > 0.0 && bucket <= PI) {
+            return Err(InvalidDistribution::Parameters(
+                "bucket width out of range".into(),
+            ));
+        }
+        let n = (PI / bucket - 1e-9).ceil() as usize;
+        let buckets = (0..n).map(|k| {
+            let lo = k as f64 * bucket;
+            let hi = ((k + 1) as f64 * bucket).min(PI);
+            (lo, hi, self.cdf(hi) - self.cdf(lo))
+        });
+        Self::histogram(buckets.collect())
+    }
+
+    /// `P(Θ ≤ θ)`, exact (to the precision of `erf` for Gaussians).
+    pub fn cdf(&self, theta: f64) -> f64 {
+        if theta <= 0.0 {
+            return 0.0;
+        }
+        if theta >= PI {
+            return 1.0;
+        }
+        match self {
+            Self::Uniform { lo, hi } => ((theta - lo) / (hi - lo)).clamp(0.0, 1.0),
+            Self::Normal { mean, sd } => {
+                let a = normal_cdf(-mean / sd);
+                let b = normal_cdf((PI - mean) / sd);
+                ((normal_cdf((theta - mean) / sd) - a) / (b - a)).clamp(0.0, 1.0)
+            }
+            Self::Mixture { parts } => parts.iter().map(|(w, d)| w * d.cdf(theta)).sum(),
+            Self::Histogram { buckets } => buckets
+                .iter()
+                .map(|&(lo, hi, p)| p * ((theta - lo) / (hi - lo)).clamp(0.0, 1.0))
+                .sum::<f64>()
+                .min(1.0),
+        }
+    }
+
+    /// `P(a < Θ ≤ b)`.
+    pub fn mass(&self, a: f64, b: f64) -> f64 {
+        (self.cdf(b) - self.cdf(a)).max(0.0)
+    }
+
+    /// The quantile function: the smallest θ with `cdf(θ) ≥ u`, by bisection to 1e-13 rad.
+    pub fn quantile(&self, u: f64) -> f64 {
+        let (mut lo, mut hi) = (0.0, PI);
+        for _ in 0..60 {
+            let mid = 0.5 * (lo + hi);
+            if self.cdf(mid) >= u {
+                hi = mid;
+            } else {
+                lo = mid;
+            }
+        }
+        hi
+    }
+
+    /// Draws one angle by inversion of the CDF.
+    pub fn sample<R: Rng + ?Sized>(&self, rng: &mut R) -> f64 {
+        let u: f64 = rng.random_range(0.0..1.0);
+        self.quantile(u.max(f64::MIN_POSITIVE))
+    }
+
+    /// Parses a specification in degrees: `uniform:0,180`, `normal:60,5`,
+    /// `mix:0.5*normal:30,3+0.5*normal:90,3`, `histogram:FILE` or `observed:FILE[,BUCKET_DEG]`.
+    ///
+    /// A histogram file has one bucket per line, `LO HI WEIGHT` in degrees (commas or
+    /// white space); an observation file has one observed angle in degrees per line. `#`
+    /// starts a comment in both.
+    ///
+    /// # Errors
+    /// [`InvalidDistribution`] naming the specification, or the file and line, at fault.
+    pub fn parse(spec: &str) -> Result<Self, InvalidDistribution> {
+        let bad = |reason: &str| InvalidDistribution::Spec {
+            spec: spec.into(),
+            reason: reason.into(),
+        };
+        let (kind, rest) = spec
+            .split_once(':')
+            .ok_or_else(|| bad("expected KIND:PARAMETERS"))?;
+        let numbers = |text: &str, count: usize| -> Result<Vec<f64>, InvalidDistribution> {
+            let v: Result<Vec<f64>, _> = text.split(',').map(|t| t.trim().parse::<f64>()).collect();
+            match v {
+                Ok(v) if v.len() == count && v.iter().all(|x| x.is_finite()) => Ok(v),
+                _ => Err(bad(&format!(
+                    "expected {count} comma-separated numbers after '{kind}:'"
+                ))),
+            }
+        };
+        match kind.trim() {
+            "uniform" => {
+                let v = numbers(rest, 2)?;
+                Self::uniform(v[0].to_radians(), v[1].to_radians())
+            }
+            "normal" => {
+                let v = numbers(rest, 2)?;
+                Self::normal(v[0].to_radians(), v[1].to_radians())
+            }
+            "mix" => {
+                let mut parts = Vec::new();
+                for term in rest.split('+') {
+                    let (w, inner) = term
+                        .split_once('*')
+                        .ok_or_else(|| bad("mixture terms are WEIGHT*SPEC joined by '+'"))?;
+                    let w: f64 = w
+                        .trim()
+                        .parse()
+                        .map_err(|_| bad(&format!("bad mixture weight {w:?}")))?;
+                    parts.push((w, Self::parse(inner.trim())?));
+                }
+                Self::mixture(parts)
+            }
+            "histogram" => read_histogram(Path::new(rest.trim())),
+            "observed" => {
+                let (file, bucket) = match rest.rsplit_once(',') {
+                    Some((f, b)) if b.trim().parse::<f64>().is_ok() => {
+                        (f, b.trim().parse::<f64>().unwrap_or(5.0))
+                    }
+                    _ => (rest, 5.0),
+                };
+                let angles = read_observations(Path::new(file.trim()))?;
+                Self::from_observations(&angles, bucket.to_radians(), 0.5)
+            }
+            other => Err(bad(&format!(
+                "unknown kind {other:?}; use uniform, normal, mix, histogram or observed"
+            ))),
+        }
+    }
+}
+
+fn data_lines(path: &Path) -> Result<Vec<(usize, String)>, InvalidDistribution> {
+    let text = std::fs::read_to_string(path).map_err(|e| InvalidDistribution::File {
+        file: path.display().to_string(),
+        line: 0,
+        reason: e.to_string(),
+    })?;
+    Ok(text
+        .lines()
+        .enumerate()
+        .map(|(i, l)| (i + 1, l.split('#').next().unwrap_or("").trim().to_string()))
+        .filter(|(_, l)| !l.is_empty())
+        .collect())
+}
+
+fn file_error(path: &Path, line: usize, reason: String) -> InvalidDistribution {
+    InvalidDistribution::File {
+        file: path.display().to_string(),
+        line,
+        reason,
+    }
+}
+
+fn read_histogram(path: &Path) -> Result<AngleDistribution, InvalidDistribution> {
+    let mut buckets = Vec::new();
+    for (no, line) in data_lines(path)? {
+        let fields: Vec<&str> = line
+            .split(|c: char| c == ',' || c.is_whitespace())
+            .filter(|f| !f.is_empty())
+            .collect();
+        let values: Result<Vec<f64>, _> = fields.iter().map(|f| f.parse::<f64>()).collect();
+        match values {
+            Ok(v) if v.len() == 3 && v.iter().all(|x| x.is_finite()) => {
+                buckets.push((v[0].to_radians(), v[1].to_radians(), v[2]));
+            }
+            _ => {
+                return Err(file_error(
+                    path,
+                    no,
+                    format!("expected 'LO HI WEIGHT' in degrees, got {line:?}"),
+                ));
+            }
+        }
+    }
+    if buckets.is_empty() {
+        return Err(file_error(path, 0, "the histogram has no buckets".into()));
+    }
+    AngleDistribution::histogram(buckets).map_err(|e| file_error(path, 0, e.to_string()))
+}
+
+fn read_observations(path: &Path) -> Result<Vec<f64>, InvalidDistribution> {
+    let mut angles = Vec::new();
+    for (no, line) in data_lines(path)? {
+        match line.parse::<f64>() {
+            Ok(a) if (0.0..=180.0).contains(&a) => angles.push(a.to_radians()),
+            _ => {
+                return Err(file_error(
+                    path,
+                    no,
+                    format!("expected one angle in [0, 180] degrees, got {line:?}"),
+                ));
+            }
+        }
+    }
+    Ok(angles)
+}
+
+/// The standard normal CDF Φ(z).
+fn normal_cdf(z: f64) -> f64 {
+    0.5 * libm::erfc(-z / std::f64::consts::SQRT_2)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use rand::SeedableRng;
+
+    #[test]
+    fn parses_the_design_specs() {
+        for s in [
+            "uniform:0,180",
+            "normal:60,5",
+            "mix:0.5*normal:30,3+0.5*normal:90,3",
+        ] {
+            let d = AngleDistribution::parse(s).unwrap();
+            assert!((d.cdf(PI) - 1.0).abs() < 1e-12, "{s}");
+            assert!(d.cdf(0.0) == 0.0);
+        }
+        let u = AngleDistribution::parse("uniform:0,180").unwrap();
+        assert!((u.cdf(PI / 2.0) - 0.5).abs() < 1e-15);
+        let n = AngleDistribution::parse("normal:60,5").unwrap();
+        assert!((n.cdf(60f64.to_radians()) - 0.5).abs() < 1e-12);
+    }
+
+    #[test]
+    fn rejects_bad_specs() {
+        for s in [
+            "",
+            "normal:60",
+            "normal:60,0",
+            "uniform:90,10",
+            "beta:1,2",
+            "mix:normal:1,2",
+            "normal:1000,1",
+            "uniform:0,200",
+            "histogram:/nonexistent/file",
+        ] {
+            assert!(AngleDistribution::parse(s).is_err(), "{s}");
+        }
+    }
+
+    #[test]
+    fn bucketed_keeps_mass() {
+        let n = AngleDistribution::parse("normal:60,5").unwrap();
+        let h = n.bucketed(5f64.to_radians()).unwrap();
+        for deg in [50.0, 55.0, 60.0, 65.0, 70.0] {
+            let t = f64::to_radians(deg);
+            assert!((h.cdf(t) - n.cdf(t)).abs() < 1e-12);
+        }
+    }
+
+    #[test]
+    fn quantile_inverts_cdf() {
+        let m = AngleDistribution::parse("mix:0.3*uniform:0,90+0.7*normal:120,10").unwrap();
+        for u in [0.01, 0.2, 0.5, 0.9, 0.999] {
+            assert!((m.cdf(m.quantile(u)) - u).abs() < 1e-9);
+        }
+        let mut rng = rand_chacha::ChaCha8Rng::seed_from_u64(7);
+        let x = m.sample(&mut rng);
+        assert!((0.0..=PI).contains(&x));
+    }
+
+    #[test]
+    fn observations_make_a_smoothed_histogram() {
+        let d = AngleDistribution::from_observations(&[PI / 2.0; 10], PI / 36.0, 0.5).unwrap();
+        let p = d.mass(PI / 2.0 - 1e-9, PI / 2.0 + PI / 36.0);
+        assert!(p > 0.3, "the observed bucket dominates: {p}");
+        assert!(d.mass(0.0, 0.01) > 0.0, "no angle is impossible");
+    }
+}

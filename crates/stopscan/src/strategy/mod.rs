@@ -1,0 +1,3 @@
+//! Online strategies, one family per folder. They see observations only, never the world.
+
+pub mod corner;

@@ -1,0 +1,3 @@
+//! Ground truth, and the sensors that turn it into observations. Strategies never see it.
+
+pub mod corner;
