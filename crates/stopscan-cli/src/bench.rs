@@ -17,11 +17,7 @@ use crate::output::emit;
 fn median(mut v: Vec<f64>) -> f64 {
     v.sort_by(f64::total_cmp);
     let n = v.len();
-    if n % 2 == 1 {
-        v[n / 2]
-    } else {
-        0.5 * (v[n / 2 - 1] + v[n / 2])
-    }
+    if n % 2 == 1 { v[n / 2] } else { 0.5 * (v[n / 2 - 1] + v[n / 2]) }
 }
 
 fn time<T>(repeat: usize, mut f: impl FnMut() -> T) -> f64 {
@@ -78,9 +74,7 @@ pub(crate) fn run(a: &BenchArgs, g: &Global) -> anyhow::Result<()> {
             (
                 "circle-ratio",
                 n,
-                time(a.repeat, || {
-                    ds.iter().map(|&d| circle::ratio(d)).sum::<f64>()
-                }),
+                time(a.repeat, || ds.iter().map(|&d| circle::ratio(d)).sum::<f64>()),
                 n as f64,
             )
         }
@@ -101,7 +95,5 @@ pub(crate) fn run(a: &BenchArgs, g: &Global) -> anyhow::Result<()> {
         }
     };
     let value = json!({"name": name, "n": n, "seconds_median": secs, "per_second": ops / secs, "repeat": a.repeat});
-    emit(g, &value, true, |w| {
-        writeln!(w, "{}", serde_json::to_string(&value).unwrap_or_default())
-    })
+    emit(g, &value, true, |w| writeln!(w, "{}", serde_json::to_string(&value).unwrap_or_default()))
 }

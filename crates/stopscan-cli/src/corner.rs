@@ -49,10 +49,7 @@ fn picture_dir(g: &Global) -> anyhow::Result<Option<PathBuf>> {
 }
 
 fn save_chart(dir: &Path, name: &str, chart: &LineChart) -> anyhow::Result<Vec<String>> {
-    Ok(write_chart(chart, &dir.join(name))?
-        .iter()
-        .map(|p| p.display().to_string())
-        .collect())
+    Ok(write_chart(chart, &dir.join(name))?.iter().map(|p| p.display().to_string()).collect())
 }
 
 fn circle_cmd(d: f64, g: &Global) -> anyhow::Result<()> {
@@ -92,18 +89,8 @@ fn circle_cmd(d: f64, g: &Global) -> anyhow::Result<()> {
             s.ratio, s.scans
         )?;
         let mut t = Table::new(&["scan", "step", "x", "y", "angle at corner (deg)"]);
-        for (k, ((x, p), a)) in s
-            .steps
-            .iter()
-            .zip(&s.scan_points)
-            .zip(&s.angles)
-            .enumerate()
-        {
-            let label = if k == s.scans {
-                "corner".to_string()
-            } else {
-                (k + 1).to_string()
-            };
+        for (k, ((x, p), a)) in s.steps.iter().zip(&s.scan_points).zip(&s.angles).enumerate() {
+            let label = if k == s.scans { "corner".to_string() } else { (k + 1).to_string() };
             t.row(vec![
                 label,
                 num(Some(*x), 6),
@@ -125,11 +112,7 @@ fn thresholds(count: usize, g: &Global) -> anyhow::Result<()> {
     emit(g, &value, true, |w| {
         let mut t = Table::new(&["scans", "maximal d", "c at upper bound"]);
         for r in &rows {
-            t.row(vec![
-                r.scans.to_string(),
-                num(Some(r.distance), 6),
-                num(Some(r.ratio), 6),
-            ]);
+            t.row(vec![r.scans.to_string(), num(Some(r.distance), 6), num(Some(r.ratio), 6)]);
         }
         t.write(w)
     })
@@ -147,11 +130,7 @@ fn optimal(d: f64, k: usize, g: &Global) -> anyhow::Result<()> {
         "improvement_over_circle": o.circle_ratio - o.ratio,
     });
     emit(g, &value, true, |w| {
-        writeln!(
-            w,
-            "global optimum at d = {d} with {k} intermediate scans: ratio {:.6}",
-            o.ratio
-        )?;
+        writeln!(w, "global optimum at d = {d} with {k} intermediate scans: ratio {:.6}", o.ratio)?;
         writeln!(
             w,
             "circle strategy at d = {d}: ratio {:.6} with {} scans",
@@ -159,11 +138,7 @@ fn optimal(d: f64, k: usize, g: &Global) -> anyhow::Result<()> {
         )?;
         let mut t = Table::new(&["scan", "x", "y"]);
         for (i, p) in o.scan_points.iter().enumerate() {
-            t.row(vec![
-                (i + 1).to_string(),
-                num(Some(p[0]), 6),
-                num(Some(p[1]), 6),
-            ]);
+            t.row(vec![(i + 1).to_string(), num(Some(p[0]), 6), num(Some(p[1]), 6)]);
         }
         t.row(vec!["corner".into(), num(Some(d), 6), num(Some(0.0), 6)]);
         t.write(w)
@@ -185,11 +160,7 @@ fn collapse(c: f64, d: Option<f64>, g: &Global) -> anyhow::Result<()> {
         writeln!(
             w,
             "c = {c} at d = {d}: {} after {} steps; farthest from the start {:.6} (Theorem 1 bound 1/(2 − c) = {})",
-            if r.reached {
-                "reaches the corner"
-            } else {
-                "collapses"
-            },
+            if r.reached { "reaches the corner" } else { "collapses" },
             r.steps,
             r.farthest,
             num(Some(r.bound), 6)
@@ -256,20 +227,13 @@ fn ratio(a: &cli::RatioArgs, g: &Global) -> anyhow::Result<()> {
             num(Some(w.asymptotic_ratio), 6),
             num(Some(w.theta_at_asymptotic.to_degrees()), 4),
         ]);
-        t.row(vec![
-            "limit as δ → 0 (papers)".into(),
-            num(limit_ratio(&name), 6),
-            "-".into(),
-        ]);
+        t.row(vec!["limit as δ → 0 (papers)".into(), num(limit_ratio(&name), 6), "-".into()]);
         t.write(w2)
     })
 }
 
 fn setup_of(s: cli::SetupArgs) -> anyhow::Result<CornerSetup> {
-    Ok(CornerSetup::new(
-        s.distance,
-        CostModel::new(s.scan_time, s.move_time, s.speed)?,
-    )?)
+    Ok(CornerSetup::new(s.distance, CostModel::new(s.scan_time, s.move_time, s.speed)?)?)
 }
 
 fn policy(a: &cli::PolicyArgs, g: &Global) -> anyhow::Result<()> {
@@ -283,13 +247,8 @@ fn policy(a: &cli::PolicyArgs, g: &Global) -> anyhow::Result<()> {
         cli::ReadingArg::Conditional => Reading::Conditional,
         cli::ReadingArg::Literal => Reading::Literal,
     };
-    let mdp = CornerMdp {
-        setup,
-        step: a.step_deg.to_radians(),
-        memory,
-        reading,
-        belief: belief.clone(),
-    };
+    let mdp =
+        CornerMdp { setup, step: a.step_deg.to_radians(), memory, reading, belief: belief.clone() };
     let p = mdp.solve()?;
     let general = match a.solver {
         cli::SolverArg::Backward => None,
@@ -303,18 +262,10 @@ fn policy(a: &cli::PolicyArgs, g: &Global) -> anyhow::Result<()> {
     let e = expected(&p.stop_list, &setup, &belief);
     let mut files = Vec::new();
     if let Some(dir) = picture_dir(g)? {
-        let name = if memory == Memory::Last {
-            "policy-mdp2"
-        } else {
-            "policy-mdp1"
-        };
+        let name = if memory == Memory::Last { "policy-mdp2" } else { "policy-mdp1" };
         let title = format!(
             "{} optimal policy, belief {}, δ = {}°",
-            if memory == Memory::Last {
-                "MDP2"
-            } else {
-                "MDP1"
-            },
+            if memory == Memory::Last { "MDP2" } else { "MDP1" },
             a.belief,
             a.step_deg
         );
@@ -334,11 +285,7 @@ fn policy(a: &cli::PolicyArgs, g: &Global) -> anyhow::Result<()> {
         writeln!(
             w,
             "{} policy, {} stops ({} states), belief {}",
-            if memory == Memory::Last {
-                "MDP2"
-            } else {
-                "MDP1"
-            },
+            if memory == Memory::Last { "MDP2" } else { "MDP1" },
             p.stops,
             p.states,
             a.belief
@@ -348,12 +295,8 @@ fn policy(a: &cli::PolicyArgs, g: &Global) -> anyhow::Result<()> {
             "expected time {:.4} s (MDP value {:.4} s), expected scans {:.3}",
             e.time, p.model_value, e.scans
         )?;
-        let angles: Vec<String> = p
-            .stop_list
-            .angles()
-            .iter()
-            .map(|x| format!("{:.1}", x.to_degrees()))
-            .collect();
+        let angles: Vec<String> =
+            p.stop_list.angles().iter().map(|x| format!("{:.1}", x.to_degrees())).collect();
         writeln!(w, "scans at (deg) while unseen: {}", angles.join(", "))
     })
 }
@@ -370,9 +313,7 @@ fn simulate(a: &cli::SimulateArgs, g: &Global) -> anyhow::Result<()> {
     }
     let mut names: Vec<String> = a.strategy.iter().map(|s| s.trim().to_lowercase()).collect();
     if names.iter().any(|n| n == "all") {
-        names = ["unirec", "exprec", "policy1", "policy2", "circle"]
-            .map(String::from)
-            .to_vec();
+        names = ["unirec", "exprec", "policy1", "policy2", "circle"].map(String::from).to_vec();
     }
     let delta = setup.delta();
     let mut results = Vec::new();
@@ -382,11 +323,7 @@ fn simulate(a: &cli::SimulateArgs, g: &Global) -> anyhow::Result<()> {
             "exprec" => stop_list(RatioStrategy::Exprec, delta, &[], a.readings)?,
             "circle" => stop_list(RatioStrategy::Circle, delta, &[], a.readings)?,
             "policy1" | "policy2" => {
-                let memory = if name == "policy1" {
-                    Memory::None
-                } else {
-                    Memory::Last
-                };
+                let memory = if name == "policy1" { Memory::None } else { Memory::Last };
                 CornerMdp {
                     setup,
                     step: a.step_deg.to_radians(),
@@ -457,11 +394,7 @@ struct ReproduceOut<'a> {
 }
 
 pub(crate) fn reproduce(a: &cli::ReproduceArgs, g: &Global) -> anyhow::Result<()> {
-    let ids: Vec<&str> = if a.id == "all" {
-        exp::IDS.to_vec()
-    } else {
-        vec![a.id.as_str()]
-    };
+    let ids: Vec<&str> = if a.id == "all" { exp::IDS.to_vec() } else { vec![a.id.as_str()] };
     let mut outs = Vec::new();
     for id in ids {
         let r = exp::reproduce(id, a.samples, g.seed)?;
@@ -518,8 +451,7 @@ pub(crate) fn reproduce(a: &cli::ReproduceArgs, g: &Global) -> anyhow::Result<()
                         row.label.clone(),
                         num(row.paper, 6),
                         num(Some(row.ours), 6),
-                        row.rel_diff
-                            .map_or("-".into(), |d| format!("{:+.2}%", 100.0 * d)),
+                        row.rel_diff.map_or("-".into(), |d| format!("{:+.2}%", 100.0 * d)),
                         mc,
                     ]);
                 }
@@ -538,11 +470,8 @@ pub(crate) fn reproduce(a: &cli::ReproduceArgs, g: &Global) -> anyhow::Result<()
 }
 
 pub(crate) fn demo(g: &Global) -> anyhow::Result<()> {
-    let (circles, four, chart) = exp::demo()?;
-    let dir = g
-        .out
-        .clone()
-        .unwrap_or_else(|| PathBuf::from("stopscan-out"));
+    let exp::Demo { circles, strategies: four, chart } = exp::demo()?;
+    let dir = g.out.clone().unwrap_or_else(|| PathBuf::from("stopscan-out"));
     std::fs::create_dir_all(&dir)
         .with_context(|| format!("cannot create output directory {}", dir.display()))?;
     let files = save_chart(&dir, "circle-ratio", &chart)?;
@@ -570,10 +499,7 @@ pub(crate) fn demo(g: &Global) -> anyhow::Result<()> {
         "stopscan {} — looking around a corner when every scan costs time\n",
         stopscan::VERSION
     )?;
-    writeln!(
-        w,
-        "Circle strategy (scan cost 1, speed 1; the papers' lower bound is 2):"
-    )?;
+    writeln!(w, "Circle strategy (scan cost 1, speed 1; the papers' lower bound is 2):")?;
     let mut t = Table::new(&["distance d", "ratio c(d)", "scans", "first step"]);
     for s in &circles {
         t.row(vec![
@@ -611,16 +537,8 @@ mod tests {
             exprec: cli::ExprecArg::TableI,
             route: cli::RouteArg::Arc,
         };
-        assert_eq!(
-            stop_list(RatioStrategy::Unirec, 0.5, &[], r).unwrap().len(),
-            4
-        );
+        assert_eq!(stop_list(RatioStrategy::Unirec, 0.5, &[], r).unwrap().len(), 4);
         assert!(stop_list(RatioStrategy::Stops, 0.5, &[], r).is_err());
-        assert_eq!(
-            stop_list(RatioStrategy::Stops, 0.5, &[30.0, 60.0], r)
-                .unwrap()
-                .len(),
-            3
-        );
+        assert_eq!(stop_list(RatioStrategy::Stops, 0.5, &[30.0, 60.0], r).unwrap().len(), 3);
     }
 }

@@ -16,10 +16,7 @@ pub(crate) struct Table {
 
 impl Table {
     pub(crate) fn new(header: &[&str]) -> Self {
-        Self {
-            header: header.iter().map(|s| (*s).to_string()).collect(),
-            rows: Vec::new(),
-        }
+        Self { header: header.iter().map(|s| (*s).to_string()).collect(), rows: Vec::new() }
     }
 
     pub(crate) fn row(&mut self, cells: Vec<String>) {
@@ -50,15 +47,7 @@ impl Table {
             writeln!(w, "{}", cells.join("  ").trim_end())
         };
         line(w, &self.header)?;
-        writeln!(
-            w,
-            "{}",
-            width
-                .iter()
-                .map(|&x| "-".repeat(x))
-                .collect::<Vec<_>>()
-                .join("  ")
-        )?;
+        writeln!(w, "{}", width.iter().map(|&x| "-".repeat(x)).collect::<Vec<_>>().join("  "))?;
         for r in &self.rows {
             line(w, r)?;
         }

@@ -39,11 +39,7 @@ pub struct Mdp {
 impl Mdp {
     /// An empty MDP; add states in order with [`Mdp::add_state`].
     pub fn new() -> Self {
-        Self {
-            state_start: vec![0],
-            action_start: vec![0],
-            ..Self::default()
-        }
+        Self { state_start: vec![0], action_start: vec![0], ..Self::default() }
     }
 
     /// Appends a state with its actions, each `(cost, [(next, probability), ..])`, and returns
@@ -95,11 +91,7 @@ impl Mdp {
         for s in 0..n {
             for (k, a) in self.action_range(s).enumerate() {
                 let t = self.action_start[a]..self.action_start[a + 1];
-                let bad = |reason: String| MdpError::Malformed {
-                    state: s,
-                    action: k,
-                    reason,
-                };
+                let bad = |reason: String| MdpError::Malformed { state: s, action: k, reason };
                 if !self.action_cost[a].is_finite() {
                     return Err(bad("cost is not finite".into()));
                 }
@@ -159,15 +151,8 @@ pub struct MdpSolution {
 pub fn policy_iteration(mdp: &Mdp) -> Result<MdpSolution, MdpError> {
     mdp.validate()?;
     let n = mdp.states();
-    let mut policy: Vec<usize> = (0..n)
-        .map(|s| {
-            if mdp.action_range(s).is_empty() {
-                usize::MAX
-            } else {
-                0
-            }
-        })
-        .collect();
+    let mut policy: Vec<usize> =
+        (0..n).map(|s| if mdp.action_range(s).is_empty() { usize::MAX } else { 0 }).collect();
     let mut values = vec![0.0; n];
     let order = reverse_topological(mdp);
     let mut iterations = 0;
@@ -175,30 +160,26 @@ pub fn policy_iteration(mdp: &Mdp) -> Result<MdpSolution, MdpError> {
         iterations += 1;
         evaluate(mdp, &policy, &order, &mut values)?;
         let mut changed = false;
-        for s in 0..n {
-            if policy[s] == usize::MAX {
+        for (s, chosen) in policy.iter_mut().enumerate() {
+            if *chosen == usize::MAX {
                 continue;
             }
             let base = mdp.state_start[s];
-            let current = mdp.q(base + policy[s], &values);
-            let mut best = (current, policy[s]);
+            let current = mdp.q(base + *chosen, &values);
+            let mut best = (current, *chosen);
             for a in mdp.action_range(s) {
                 let q = mdp.q(a, &values);
                 if q < best.0 - 1e-12 * (1.0 + best.0.abs()) {
                     best = (q, a - base);
                 }
             }
-            if best.1 != policy[s] {
-                policy[s] = best.1;
+            if best.1 != *chosen {
+                *chosen = best.1;
                 changed = true;
             }
         }
         if !changed {
-            return Ok(MdpSolution {
-                values,
-                policy,
-                iterations,
-            });
+            return Ok(MdpSolution { values, policy, iterations });
         }
     }
 }
@@ -306,20 +287,14 @@ mod tests {
     fn improper_policy_is_an_error() {
         let mut m = Mdp::new();
         m.add_state(&[(1.0, &[(0, 1.0)])]);
-        assert!(matches!(
-            policy_iteration(&m),
-            Err(MdpError::ImproperPolicy(_))
-        ));
+        assert!(matches!(policy_iteration(&m), Err(MdpError::ImproperPolicy(_))));
     }
 
     #[test]
     fn malformed_is_an_error() {
         let mut m = Mdp::new();
         m.add_state(&[(1.0, &[(5, 1.0)])]);
-        assert!(matches!(
-            policy_iteration(&m),
-            Err(MdpError::Malformed { .. })
-        ));
+        assert!(matches!(policy_iteration(&m), Err(MdpError::Malformed { .. })));
         let mut m = Mdp::new();
         m.add_state(&[(1.0, &[(0, 0.5)])]);
         assert!(policy_iteration(&m).is_err());

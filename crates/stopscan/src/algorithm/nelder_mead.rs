@@ -103,12 +103,7 @@ fn simplex_run(
         let spread = vals[n] - vals[0];
         let diameter = pts[1..]
             .iter()
-            .map(|x| {
-                x.iter()
-                    .zip(&pts[0])
-                    .map(|(a, b)| (a - b).abs())
-                    .fold(0.0, f64::max)
-            })
+            .map(|x| x.iter().zip(&pts[0]).map(|(a, b)| (a - b).abs()).fold(0.0, f64::max))
             .fold(0.0, f64::max);
         if spread <= p.f_tolerance * (1.0 + vals[0].abs()) && diameter <= p.x_tolerance {
             break;
@@ -137,11 +132,8 @@ fn simplex_run(
         } else if fr < vals[n - 1] {
             (pts[n], vals[n]) = (reflected, fr);
         } else {
-            let (towards, fw) = if fr < vals[n] {
-                (&reflected, fr)
-            } else {
-                (&pts[n].clone(), vals[n])
-            };
+            let (towards, fw) =
+                if fr < vals[n] { (&reflected, fr) } else { (&pts[n].clone(), vals[n]) };
             let contracted = point(&centroid, towards, 0.5);
             let fc = f(&contracted);
             evals += 1;
@@ -157,9 +149,7 @@ fn simplex_run(
             }
         }
     }
-    let i = (0..=n)
-        .min_by(|&a, &b| vals[a].total_cmp(&vals[b]))
-        .unwrap_or(0);
+    let i = (0..=n).min_by(|&a, &b| vals[a].total_cmp(&vals[b])).unwrap_or(0);
     (pts[i].clone(), vals[i])
 }
 
@@ -178,11 +168,7 @@ mod tests {
     #[test]
     fn minimax_of_two_lines() {
         // max(x, 1 − x) is minimal (1/2) at x = 1/2, a kink.
-        let (x, v) = minimize(
-            |x| x[0].max(1.0 - x[0]),
-            &[3.0],
-            NelderMeadParams::default(),
-        );
+        let (x, v) = minimize(|x| x[0].max(1.0 - x[0]), &[3.0], NelderMeadParams::default());
         assert!((v - 0.5).abs() < 1e-12 && (x[0] - 0.5).abs() < 1e-9);
     }
 }

@@ -27,13 +27,7 @@ impl Row {
     /// A row; `rel_diff` is computed.
     pub fn new(label: impl Into<String>, paper: Option<f64>, ours: f64) -> Self {
         let rel_diff = paper.map(|p| (ours - p) / p.abs());
-        Self {
-            label: label.into(),
-            paper,
-            ours,
-            rel_diff,
-            monte_carlo: None,
-        }
+        Self { label: label.into(), paper, ours, rel_diff, monte_carlo: None }
     }
 
     /// Attaches a Monte Carlo estimate.
@@ -93,10 +87,8 @@ pub enum ExperimentError {
 /// depend on how samples are spread over threads.
 pub fn sample_seed(seed: u64, index: u64) -> u64 {
     // SplitMix64 finaliser over the pair.
-    let mut z = seed
-        ^ index
-            .wrapping_mul(0x9E37_79B9_7F4A_7C15)
-            .wrapping_add(0xD1B5_4A32_D192_ED03);
+    let mut z =
+        seed ^ index.wrapping_mul(0x9E37_79B9_7F4A_7C15).wrapping_add(0xD1B5_4A32_D192_ED03);
     z = (z ^ (z >> 30)).wrapping_mul(0xBF58_476D_1CE4_E5B9);
     z = (z ^ (z >> 27)).wrapping_mul(0x94D0_49BB_1331_11EB);
     z ^ (z >> 31)

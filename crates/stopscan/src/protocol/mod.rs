@@ -26,11 +26,7 @@ pub struct CostModel {
 impl Default for CostModel {
     /// The circle paper's normalisation: one unit per scan, unit speed, free moves.
     fn default() -> Self {
-        Self {
-            scan_time: 1.0,
-            move_time: 0.0,
-            speed: 1.0,
-        }
+        Self { scan_time: 1.0, move_time: 0.0, speed: 1.0 }
     }
 }
 
@@ -65,11 +61,7 @@ impl CostModel {
         if !speed.is_finite() || speed <= 0.0 {
             return Err(InvalidCostModel::NonPositiveSpeed(speed));
         }
-        Ok(Self {
-            scan_time,
-            move_time,
-            speed,
-        })
+        Ok(Self { scan_time, move_time, speed })
     }
 
     /// The total time of a tally.
@@ -141,11 +133,7 @@ mod tests {
     #[test]
     fn prices_each_term() {
         let m = CostModel::new(2.0, 0.5, 0.5).unwrap();
-        let t = Tally {
-            scans: 3,
-            moves: 2,
-            distance: 10.0,
-        };
+        let t = Tally { scans: 3, moves: 2, distance: 10.0 };
         let p = m.price(&t);
         assert_eq!(p.scan_time_total, 6.0);
         assert_eq!(p.move_time_total, 1.0);

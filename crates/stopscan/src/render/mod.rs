@@ -44,19 +44,16 @@ pub struct Series {
 impl Series {
     /// A plain data line.
     pub fn line(label: impl Into<String>, points: Vec<(f64, f64)>) -> Self {
-        Self {
-            label: label.into(),
-            points,
-            markers: false,
-            dashed: false,
-        }
+        Self { label: label.into(), points, markers: false, dashed: false }
     }
     /// A data line with markers.
+    #[must_use]
     pub fn with_markers(mut self) -> Self {
         self.markers = true;
         self
     }
     /// A dashed reference line.
+    #[must_use]
     pub fn dashed(mut self) -> Self {
         self.dashed = true;
         self
@@ -93,27 +90,16 @@ pub fn write_chart(chart: &LineChart, stem: &Path) -> Result<Vec<PathBuf>, Rende
     let svg = stem.with_extension("svg");
     let png = stem.with_extension("png");
     let size = (900, 560);
-    draw_chart(SVGBackend::new(&svg, size).into_drawing_area(), chart).map_err(|reason| {
-        RenderError::Draw {
-            path: svg.clone(),
-            reason,
-        }
-    })?;
-    draw_chart(BitMapBackend::new(&png, size).into_drawing_area(), chart).map_err(|reason| {
-        RenderError::Draw {
-            path: png.clone(),
-            reason,
-        }
-    })?;
+    draw_chart(&SVGBackend::new(&svg, size).into_drawing_area(), chart)
+        .map_err(|reason| RenderError::Draw { path: svg.clone(), reason })?;
+    draw_chart(&BitMapBackend::new(&png, size).into_drawing_area(), chart)
+        .map_err(|reason| RenderError::Draw { path: png.clone(), reason })?;
     Ok(vec![svg, png])
 }
 
 fn bounds(chart: &LineChart) -> Option<(f64, f64, f64, f64)> {
-    let pts = chart
-        .series
-        .iter()
-        .flat_map(|s| &s.points)
-        .filter(|p| p.0.is_finite() && p.1.is_finite());
+    let pts =
+        chart.series.iter().flat_map(|s| &s.points).filter(|p| p.0.is_finite() && p.1.is_finite());
     let (mut x0, mut x1, mut y0, mut y1) = (f64::MAX, f64::MIN, f64::MAX, f64::MIN);
     let mut any = false;
     for &(x, y) in pts {
@@ -124,24 +110,20 @@ fn bounds(chart: &LineChart) -> Option<(f64, f64, f64, f64)> {
         return None;
     }
     let pad = |a: f64, b: f64| {
-        if b - a < 1e-12 {
-            0.5 * a.abs().max(1.0)
-        } else {
-            0.04 * (b - a)
-        }
+        if b - a < 1e-12 { 0.5 * a.abs().max(1.0) } else { 0.04 * (b - a) }
     };
     let (px, py) = (pad(x0, x1), pad(y0, y1));
     Some((x0 - px, x1 + px, y0 - py, y1 + py))
 }
 
 fn draw_chart<DB: DrawingBackend>(
-    root: DrawingArea<DB, Shift>,
+    root: &DrawingArea<DB, Shift>,
     chart: &LineChart,
 ) -> Result<(), String> {
     let (x0, x1, y0, y1) =
         bounds(chart).ok_or_else(|| format!("chart {:?} has no finite points", chart.title))?;
     root.fill(&WHITE).map_err(|e| e.to_string())?;
-    let mut ctx = ChartBuilder::on(&root)
+    let mut ctx = ChartBuilder::on(root)
         .caption(&chart.title, ("sans-serif", 22))
         .margin(12)
         .x_label_area_size(44)
@@ -156,12 +138,8 @@ fn draw_chart<DB: DrawingBackend>(
         .map_err(|e| e.to_string())?;
     for (k, s) in chart.series.iter().enumerate() {
         let color = PALETTE[k % PALETTE.len()];
-        let pts: Vec<(f64, f64)> = s
-            .points
-            .iter()
-            .copied()
-            .filter(|p| p.0.is_finite() && p.1.is_finite())
-            .collect();
+        let pts: Vec<(f64, f64)> =
+            s.points.iter().copied().filter(|p| p.0.is_finite() && p.1.is_finite()).collect();
         let style = color.stroke_width(if s.dashed { 1 } else { 2 });
         if s.dashed {
             ctx.draw_series(DashedLineSeries::new(pts.clone(), 6, 4, style))
@@ -208,49 +186,31 @@ pub fn write_policy_image(
     let png = stem.with_extension("png");
     let side = 560u32;
     let h = if rows.len() <= 2 { 220 } else { side + 60 };
-    draw_policy(
-        SVGBackend::new(&svg, (side + 80, h)).into_drawing_area(),
-        rows,
-        title,
-    )
-    .map_err(|reason| RenderError::Draw {
-        path: svg.clone(),
-        reason,
-    })?;
-    draw_policy(
-        BitMapBackend::new(&png, (side + 80, h)).into_drawing_area(),
-        rows,
-        title,
-    )
-    .map_err(|reason| RenderError::Draw {
-        path: png.clone(),
-        reason,
-    })?;
+    draw_policy(&SVGBackend::new(&svg, (side + 80, h)).into_drawing_area(), rows, title)
+        .map_err(|reason| RenderError::Draw { path: svg.clone(), reason })?;
+    draw_policy(&BitMapBackend::new(&png, (side + 80, h)).into_drawing_area(), rows, title)
+        .map_err(|reason| RenderError::Draw { path: png.clone(), reason })?;
     Ok(vec![svg, png])
 }
 
 fn draw_policy<DB: DrawingBackend>(
-    root: DrawingArea<DB, Shift>,
+    root: &DrawingArea<DB, Shift>,
     rows: &[Vec<Cell>],
     title: &str,
 ) -> Result<(), String> {
     root.fill(&WHITE).map_err(|e| e.to_string())?;
     let (n_rows, n_cols) = (rows.len() as f64, rows[0].len() as f64);
-    let mut ctx = ChartBuilder::on(&root)
-        .caption(title, ("sans-serif", 18))
+    let mut ctx = ChartBuilder::on(root)
+        .caption(title, ("sans-serif", 15))
         .margin(10)
-        .x_label_area_size(36)
+        .x_label_area_size(48)
         .y_label_area_size(44)
         .build_cartesian_2d(0.0..n_cols, n_rows..0.0)
         .map_err(|e| e.to_string())?;
     ctx.configure_mesh()
         .disable_mesh()
-        .x_desc("j (last scan stop)")
-        .y_desc(if rows.len() <= 2 {
-            "s_i / s'_i"
-        } else {
-            "i (current stop)"
-        })
+        .x_desc("j, last scan stop (green: reconstruct, red: move, blue: no such state)")
+        .y_desc(if rows.len() <= 2 { "s_i / s'_i" } else { "i (current stop)" })
         .draw()
         .map_err(|e| e.to_string())?;
     let cells = rows.iter().enumerate().flat_map(|(i, row)| {
@@ -260,10 +220,7 @@ fn draw_policy<DB: DrawingBackend>(
                 Cell::Move => RGBColor(200, 50, 50),
                 Cell::Reconstruct => RGBColor(60, 170, 70),
             };
-            Rectangle::new(
-                [(j as f64, i as f64), (j as f64 + 1.0, i as f64 + 1.0)],
-                color.filled(),
-            )
+            Rectangle::new([(j as f64, i as f64), (j as f64 + 1.0, i as f64 + 1.0)], color.filled())
         })
     });
     ctx.draw_series(cells).map_err(|e| e.to_string())?;

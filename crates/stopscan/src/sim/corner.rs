@@ -3,7 +3,7 @@
 use serde::{Deserialize, Serialize};
 
 use super::Observer;
-use crate::protocol::corner::{CornerObservation, Stop};
+use crate::protocol::corner::{CornerObservation, Route, Stop};
 use crate::protocol::{Action, Tally, TimeBreakdown};
 use crate::strategy::corner::{CornerStrategy, Feedback};
 use crate::world::corner::CornerWorld;
@@ -63,16 +63,7 @@ pub fn run(
                 tally.distance += metres;
                 at = reached;
                 feedback = Feedback::Arrived;
-                if observer
-                    .on_move(
-                        &Stop {
-                            angle: at,
-                            route: to.route,
-                        },
-                        metres,
-                    )
-                    .is_break()
-                {
+                if observer.on_move(&Stop { angle: at, route: to.route }, metres).is_break() {
                     interrupted = true;
                     break;
                 }
@@ -83,16 +74,7 @@ pub fn run(
                 scans.push(at);
                 seen = matches!(obs, CornerObservation::Seen { .. });
                 feedback = Feedback::Scanned(obs);
-                if observer
-                    .on_scan(
-                        &Stop {
-                            angle: at,
-                            route: Default::default(),
-                        },
-                        &obs,
-                    )
-                    .is_break()
-                {
+                if observer.on_scan(&Stop { angle: at, route: Route::default() }, &obs).is_break() {
                     interrupted = true;
                     break;
                 }
@@ -113,12 +95,7 @@ pub fn run(
     }
     if interrupted {
         observer.on_finish(&tally);
-        return Ok(CornerRun {
-            tally,
-            time: world.setup.cost.price(&tally),
-            scans,
-            interrupted,
-        });
+        return Ok(CornerRun { tally, time: world.setup.cost.price(&tally), scans, interrupted });
     }
     Err(SimError::TooLong(strategy.name().into(), LIMIT))
 }
@@ -138,11 +115,7 @@ mod tests {
             let list = unirec(0.1, Route::Arc, last_step).unwrap();
             let costs = list.costs(&setup);
             for theta in [0.05, 0.1, 0.15, 1.0, 1.55, 1.6, 3.0] {
-                let world = CornerWorld {
-                    setup,
-                    theta,
-                    last_step,
-                };
+                let world = CornerWorld { setup, theta, last_step };
                 let mut s = list.clone().into_strategy("unirec");
                 let r = run(&world, &mut s, &mut NoObserver).unwrap();
                 let k = list.seen_at(theta);

@@ -24,10 +24,7 @@ impl CornerWorld {
             (LastStep::Nominal, Route::Arc) => to.angle,
             _ => reached,
         };
-        (
-            reached,
-            self.setup.travel(from, charged.max(from), to.route),
-        )
+        (reached, self.setup.travel(from, charged.max(from), to.route))
     }
 
     /// The sensor: a scan at stop angle φ sees the edge exactly when θ ≤ φ, or at the corner.

@@ -99,19 +99,11 @@ pub struct Expected {
 pub fn expected(list: &StopList, setup: &CornerSetup, truth: &AngleDistribution) -> Expected {
     let costs = list.costs(setup);
     let (tau, mt, v) = (setup.cost.scan_time, setup.cost.move_time, setup.cost.speed);
-    let mut e = Expected {
-        time: 0.0,
-        scans: 0.0,
-        distance: 0.0,
-    };
+    let mut e = Expected { time: 0.0, scans: 0.0, distance: 0.0 };
     let mut left = 0.0;
     let last = costs.len() - 1;
     for (k, &cost) in costs.iter().enumerate() {
-        let right = if k == last {
-            std::f64::consts::PI
-        } else {
-            list.angles()[k]
-        };
+        let right = if k == last { std::f64::consts::PI } else { list.angles()[k] };
         let p = truth.mass(left, right);
         let n = (k + 1) as f64;
         e.time += p * cost;

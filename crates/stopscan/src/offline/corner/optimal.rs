@@ -26,10 +26,7 @@ use crate::strategy::corner::circle;
 /// O(k²) for k points.
 pub fn plane_ratio(d: f64, pts: &[[f64; 2]]) -> f64 {
     let k = pts.len();
-    let beta: Vec<f64> = pts
-        .iter()
-        .map(|p| p[1].atan2(d - p[0]).clamp(0.0, CORNER))
-        .collect();
+    let beta: Vec<f64> = pts.iter().map(|p| p[1].atan2(d - p[0]).clamp(0.0, CORNER)).collect();
     let mut path = Vec::with_capacity(k + 1);
     let mut len = 0.0;
     let mut prev = [0.0, 0.0];
@@ -83,10 +80,7 @@ pub struct OptimalScans {
 /// # Complexity
 /// A few hundred thousand evaluations of [`plane_ratio`] for k ≤ 6.
 pub fn optimal_scans(d: f64, k: usize, seed: u64) -> OptimalScans {
-    assert!(
-        d.is_finite() && d > 0.0,
-        "the distance must be finite and positive"
-    );
+    assert!(d.is_finite() && d > 0.0, "the distance must be finite and positive");
     let circ = circle::solve(d);
     let unpack = |z: &[f64]| -> Vec<[f64; 2]> { z.chunks(2).map(|c| [c[0], c[1]]).collect() };
     let objective = |z: &[f64]| plane_ratio(d, &unpack(z));
@@ -110,18 +104,12 @@ pub fn optimal_scans(d: f64, k: usize, seed: u64) -> OptimalScans {
         angles.push(last + (CORNER - last) * i as f64 / (k - have + 1) as f64);
     }
     starts.push(angles.iter().flat_map(|&a| on_circle(a)).collect());
-    starts.push(
-        (1..=k)
-            .flat_map(|i| on_circle(CORNER * i as f64 / (k + 1) as f64))
-            .collect(),
-    );
+    starts.push((1..=k).flat_map(|i| on_circle(CORNER * i as f64 / (k + 1) as f64)).collect());
     let mut rng = ChaCha8Rng::seed_from_u64(seed);
     for _ in 0..4 {
         let base = starts[rng.random_range(0..2)].clone();
         starts.push(
-            base.iter()
-                .map(|v| v + rng.random_range(-0.1..0.1) * d.max(1.0) * 0.2)
-                .collect(),
+            base.iter().map(|v| v + rng.random_range(-0.1..0.1) * d.max(1.0) * 0.2).collect(),
         );
     }
     let params = NelderMeadParams::default().with_initial_step(0.05);
@@ -162,6 +150,6 @@ mod tests {
     #[test]
     fn the_paper_optimum_at_d1() {
         let o = optimal_scans(1.0, 1, 0);
-        assert!((o.ratio - 1.808201).abs() < 1e-6, "{o:?}");
+        assert!((o.ratio - 1.808_201).abs() < 1e-6, "{o:?}");
     }
 }

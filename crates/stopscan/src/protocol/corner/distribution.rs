@@ -122,9 +122,7 @@ impl AngleDistribution {
                 "mixture weights must be non-negative with a positive sum".into(),
             ));
         }
-        Ok(Self::Mixture {
-            parts: parts.into_iter().map(|(w, d)| (w / total, d)).collect(),
-        })
+        Ok(Self::Mixture { parts: parts.into_iter().map(|(w, d)| (w / total, d)).collect() })
     }
 
     /// A histogram from `(lo, hi, weight)` buckets in radians; weights are normalised.
@@ -155,10 +153,7 @@ impl AngleDistribution {
             prev_hi = hi;
         }
         Ok(Self::Histogram {
-            buckets: buckets
-                .into_iter()
-                .map(|(l, h, w)| (l, h.min(PI), w / total))
-                .collect(),
+            buckets: buckets.into_iter().map(|(l, h, w)| (l, h.min(PI), w / total)).collect(),
         })
     }
 
@@ -190,13 +185,8 @@ impl AngleDistribution {
             }
             counts[((a / bucket) as usize).min(n - 1)] += 1.0;
         }
-        let buckets = (0..n).map(|k| {
-            (
-                k as f64 * bucket,
-                ((k + 1) as f64 * bucket).min(PI),
-                counts[k],
-            )
-        });
+        let buckets =
+            (0..n).map(|k| (k as f64 * bucket, ((k + 1) as f64 * bucket).min(PI), counts[k]));
         Self::histogram(buckets.collect())
     }
 
@@ -207,9 +197,7 @@ impl AngleDistribution {
     /// If the bucket width is not in (0, π].
     pub fn bucketed(&self, bucket: f64) -> Result<Self, InvalidDistribution> {
         if !(bucket.is_finite() && bucket > 0.0 && bucket <= PI) {
-            return Err(InvalidDistribution::Parameters(
-                "bucket width out of range".into(),
-            ));
+            return Err(InvalidDistribution::Parameters("bucket width out of range".into()));
         }
         let n = (PI / bucket - 1e-9).ceil() as usize;
         let buckets = (0..n).map(|k| {
@@ -279,20 +267,14 @@ impl AngleDistribution {
     /// # Errors
     /// [`InvalidDistribution`] naming the specification, or the file and line, at fault.
     pub fn parse(spec: &str) -> Result<Self, InvalidDistribution> {
-        let bad = |reason: &str| InvalidDistribution::Spec {
-            spec: spec.into(),
-            reason: reason.into(),
-        };
-        let (kind, rest) = spec
-            .split_once(':')
-            .ok_or_else(|| bad("expected KIND:PARAMETERS"))?;
+        let bad =
+            |reason: &str| InvalidDistribution::Spec { spec: spec.into(), reason: reason.into() };
+        let (kind, rest) = spec.split_once(':').ok_or_else(|| bad("expected KIND:PARAMETERS"))?;
         let numbers = |text: &str, count: usize| -> Result<Vec<f64>, InvalidDistribution> {
             let v: Result<Vec<f64>, _> = text.split(',').map(|t| t.trim().parse::<f64>()).collect();
             match v {
                 Ok(v) if v.len() == count && v.iter().all(|x| x.is_finite()) => Ok(v),
-                _ => Err(bad(&format!(
-                    "expected {count} comma-separated numbers after '{kind}:'"
-                ))),
+                _ => Err(bad(&format!("expected {count} comma-separated numbers after '{kind}:'"))),
             }
         };
         match kind.trim() {
@@ -310,10 +292,8 @@ impl AngleDistribution {
                     let (w, inner) = term
                         .split_once('*')
                         .ok_or_else(|| bad("mixture terms are WEIGHT*SPEC joined by '+'"))?;
-                    let w: f64 = w
-                        .trim()
-                        .parse()
-                        .map_err(|_| bad(&format!("bad mixture weight {w:?}")))?;
+                    let w: f64 =
+                        w.trim().parse().map_err(|_| bad(&format!("bad mixture weight {w:?}")))?;
                     parts.push((w, Self::parse(inner.trim())?));
                 }
                 Self::mixture(parts)
@@ -351,20 +331,14 @@ fn data_lines(path: &Path) -> Result<Vec<(usize, String)>, InvalidDistribution> 
 }
 
 fn file_error(path: &Path, line: usize, reason: String) -> InvalidDistribution {
-    InvalidDistribution::File {
-        file: path.display().to_string(),
-        line,
-        reason,
-    }
+    InvalidDistribution::File { file: path.display().to_string(), line, reason }
 }
 
 fn read_histogram(path: &Path) -> Result<AngleDistribution, InvalidDistribution> {
     let mut buckets = Vec::new();
     for (no, line) in data_lines(path)? {
-        let fields: Vec<&str> = line
-            .split(|c: char| c == ',' || c.is_whitespace())
-            .filter(|f| !f.is_empty())
-            .collect();
+        let fields: Vec<&str> =
+            line.split(|c: char| c == ',' || c.is_whitespace()).filter(|f| !f.is_empty()).collect();
         let values: Result<Vec<f64>, _> = fields.iter().map(|f| f.parse::<f64>()).collect();
         match values {
             Ok(v) if v.len() == 3 && v.iter().all(|x| x.is_finite()) => {
@@ -414,11 +388,7 @@ mod tests {
 
     #[test]
     fn parses_the_design_specs() {
-        for s in [
-            "uniform:0,180",
-            "normal:60,5",
-            "mix:0.5*normal:30,3+0.5*normal:90,3",
-        ] {
+        for s in ["uniform:0,180", "normal:60,5", "mix:0.5*normal:30,3+0.5*normal:90,3"] {
             let d = AngleDistribution::parse(s).unwrap();
             assert!((d.cdf(PI) - 1.0).abs() < 1e-12, "{s}");
             assert!(d.cdf(0.0) == 0.0);

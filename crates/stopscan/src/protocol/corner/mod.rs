@@ -81,11 +81,7 @@ impl CornerSetup {
     /// perpendicular to the edge's line, `τ + t_M + D·sin θ / v` for θ < π/2 and
     /// `τ + t_M + D / v` otherwise.
     pub fn optimum(&self, theta: f64) -> f64 {
-        let reach = if theta < CORNER {
-            theta.max(0.0).sin()
-        } else {
-            1.0
-        };
+        let reach = if theta < CORNER { theta.max(0.0).sin() } else { 1.0 };
         self.cost.scan_time + self.cost.move_time + self.distance * reach / self.cost.speed
     }
 }

@@ -35,8 +35,16 @@ pub enum Outcome {
 ///
 /// # Complexity
 /// O(steps) time, O(1) space; the number of steps is at most `c·(1 + d) + 2`.
+///
+/// For distances far below 1, `c − 1` loses low bits when `c` is formed; use [`run_excess`]
+/// with the excess from [`ratio_excess`] to replay the search's own decision exactly.
 pub fn run(d: f64, c: f64) -> Outcome {
     walk(d, c - 1.0, |_, _, _| ())
+}
+
+/// [`run`] with the excess `e = c − 1` given directly (exact for any distance).
+pub fn run_excess(d: f64, e: f64) -> Outcome {
+    walk(d, e, |_, _, _| ())
 }
 
 /// The recursion with a callback `(step length, sin α, cos α)` after each full step.
@@ -88,11 +96,11 @@ fn step_limit(d: f64, e: f64) -> usize {
 /// assert!((c - 2.001525).abs() < 1e-6);
 /// ```
 pub fn ratio(d: f64) -> f64 {
-    1.0 + excess(d)
+    1.0 + ratio_excess(d)
 }
 
 /// `c(d) − 1`, searched directly so that small distances keep full relative precision.
-fn excess(d: f64) -> f64 {
+pub fn ratio_excess(d: f64) -> f64 {
     excess_to(d, 1e-12)
 }
 
@@ -102,10 +110,7 @@ fn excess(d: f64) -> f64 {
 /// ([`reaches3`]): the walk is a chain of dependent square roots, so three independent
 /// chains cost little more than one, and each round shrinks the bracket fourfold.
 fn excess_to(d: f64, tol: f64) -> f64 {
-    assert!(
-        d.is_finite() && d > 0.0,
-        "the distance must be finite and positive"
-    );
+    assert!(d.is_finite() && d > 0.0, "the distance must be finite and positive");
     // e = d reaches at once (x_1 = d is the whole diameter).
     let mut hi = d;
     if hi > SAFE_HI - 1.0 && reaches3(d, [SAFE_HI - 1.0; 3])[0] {
@@ -206,7 +211,7 @@ impl CircleSolution {
 /// # Complexity
 /// O(45 · steps) time, O(steps) space.
 pub fn solve(d: f64) -> CircleSolution {
-    let e = excess(d);
+    let e = ratio_excess(d);
     let c = 1.0 + e;
     let (mut steps, mut angles, mut points) = (Vec::new(), Vec::new(), Vec::new());
     let mut last_cos = 1.0;
@@ -271,11 +276,7 @@ pub fn thresholds(count: usize) -> Vec<Threshold> {
                 hi = mid;
             }
         }
-        out.push(Threshold {
-            scans: k,
-            distance: lo,
-            ratio: 1.0 + excess_to(lo, 0.0),
-        });
+        out.push(Threshold { scans: k, distance: lo, ratio: 1.0 + excess_to(lo, 0.0) });
         lo = hi;
     }
     out
@@ -310,19 +311,8 @@ pub fn collapse(d: f64, c: f64) -> Collapse {
     if reached {
         farthest = d;
     }
-    let bound = if c < 2.0 {
-        1.0 / (2.0 - c)
-    } else {
-        f64::INFINITY
-    };
-    Collapse {
-        ratio: c,
-        distance: d,
-        reached,
-        steps,
-        farthest,
-        bound,
-    }
+    let bound = if c < 2.0 { 1.0 / (2.0 - c) } else { f64::INFINITY };
+    Collapse { ratio: c, distance: d, reached, steps, farthest, bound }
 }
 
 #[cfg(test)]

@@ -121,9 +121,7 @@ impl CornerMdp {
         if self.memory == Memory::Last && n > 20_000 {
             return Err(CornerMdpError::TooLarge(n));
         }
-        let phi = (0..=n)
-            .map(|i| (i as f64 * self.step).min(CORNER))
-            .collect();
+        let phi = (0..=n).map(|i| (i as f64 * self.step).min(CORNER)).collect();
         Ok((n, phi))
     }
 
@@ -178,10 +176,7 @@ impl CornerMdp {
         let mut next = vec![tau; n + 1]; // row i = n: scan at the corner.
         let mut row = vec![0.0; n + 1];
         let surv: Vec<f64> = cdf.iter().map(|f| 1.0 - f).collect();
-        let inv: Vec<f64> = surv
-            .iter()
-            .map(|&s| if s > 0.0 { 1.0 / s } else { 0.0 })
-            .collect();
+        let inv: Vec<f64> = surv.iter().map(|&s| if s > 0.0 { 1.0 / s } else { 0.0 }).collect();
         for i in (0..n).rev() {
             let after_scan = mt + step[i] + next[i];
             row[i] = after_scan;
@@ -233,7 +228,7 @@ impl CornerMdp {
                     .collect()
             })
             .collect();
-        self.finish(n, n * (n + 1) / 2 + n, model_value, phi, scan_stops, image)
+        Self::finish(n, n * (n + 1) / 2 + n, model_value, phi, scan_stops, image)
     }
 
     fn solve_mdp1(
@@ -259,26 +254,10 @@ impl CornerMdp {
         let model_value = mt + step[0] + w[1];
         let scan_stops: Vec<usize> = (1..=n).filter(|&i| scan[i]).collect();
         let image = vec![
-            (0..=n)
-                .map(|i| {
-                    if scan[i] {
-                        Cell::Reconstruct
-                    } else {
-                        Cell::Move
-                    }
-                })
-                .collect(),
-            (0..=n)
-                .map(|i| {
-                    if i == n {
-                        Cell::Inaccessible
-                    } else {
-                        Cell::Move
-                    }
-                })
-                .collect(),
+            (0..=n).map(|i| if scan[i] { Cell::Reconstruct } else { Cell::Move }).collect(),
+            (0..=n).map(|i| if i == n { Cell::Inaccessible } else { Cell::Move }).collect(),
         ];
-        self.finish(n, 2 * n, model_value, phi, scan_stops, image)
+        Self::finish(n, 2 * n, model_value, phi, scan_stops, image)
     }
 
     fn miss1(&self, cdf: &[f64], i: usize) -> f64 {
@@ -289,7 +268,6 @@ impl CornerMdp {
     }
 
     fn finish(
-        &self,
         n: usize,
         states: usize,
         model_value: f64,
@@ -300,14 +278,7 @@ impl CornerMdp {
         let angles: Vec<f64> = scan_stops.iter().map(|&i| phi[i]).collect();
         let stop_list = StopList::from_nominal(&angles, Route::Arc, LastStep::Capped)
             .expect("grid stops are strictly increasing");
-        CornerPolicy {
-            stops: n,
-            states,
-            model_value,
-            stop_list,
-            scan_stops,
-            image,
-        }
+        CornerPolicy { stops: n, states, model_value, stop_list, scan_stops, image }
     }
 
     /// The same MDP as a general sparse [`Mdp`], self-loop included, for the general solver.
@@ -316,6 +287,7 @@ impl CornerMdp {
     ///
     /// # Errors
     /// [`CornerMdpError`] for a bad step.
+    #[expect(clippy::needless_range_loop, reason = "state ids are computed from the stop index")]
     pub fn to_general(&self) -> Result<(Mdp, usize), CornerMdpError> {
         let (n, phi, cdf, step) = self.tables()?;
         let (tau, mt) = (self.setup.cost.scan_time, self.setup.cost.move_time);
@@ -376,10 +348,7 @@ impl CornerMdp {
         }
     }
 
-    #[expect(
-        clippy::type_complexity,
-        reason = "private helper returning the discretisation"
-    )]
+    #[expect(clippy::type_complexity, reason = "private helper returning the discretisation")]
     fn tables(&self) -> Result<(usize, Vec<f64>, Vec<f64>, Vec<f64>), CornerMdpError> {
         let (n, phi) = self.grid()?;
         let cdf: Vec<f64> = phi.iter().map(|&p| self.belief.cdf(p)).collect();
@@ -419,11 +388,7 @@ mod tests {
     #[test]
     fn general_solver_agrees_with_backward_induction() {
         for memory in [Memory::None, Memory::Last] {
-            for belief in [
-                "uniform:0,180",
-                "normal:60,5",
-                "mix:0.5*normal:30,3+0.5*normal:90,3",
-            ] {
+            for belief in ["uniform:0,180", "normal:60,5", "mix:0.5*normal:30,3+0.5*normal:90,3"] {
                 let m = mdp(memory, belief, 5.0);
                 let exact = m.solve().unwrap().model_value;
                 let (general, _) = m.solve_general().unwrap();

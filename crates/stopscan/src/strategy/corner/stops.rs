@@ -72,11 +72,7 @@ impl StopList {
             angles.push(angle);
         }
         angles.push(CORNER);
-        Ok(Self {
-            angles,
-            charged_last,
-            route,
-        })
+        Ok(Self { angles, charged_last, route })
     }
 
     /// The stop angles (radians), ending with π/2.
@@ -126,19 +122,12 @@ impl StopList {
 
     /// The stop at which an edge at angle θ is first seen.
     pub fn seen_at(&self, theta: f64) -> usize {
-        self.angles
-            .partition_point(|&a| a < theta)
-            .min(self.angles.len() - 1)
+        self.angles.partition_point(|&a| a < theta).min(self.angles.len() - 1)
     }
 
     /// A strategy object that drives this list.
     pub fn into_strategy(self, name: impl Into<String>) -> StopListStrategy {
-        StopListStrategy {
-            name: name.into(),
-            list: self,
-            next: 0,
-            finished: false,
-        }
+        StopListStrategy { name: name.into(), list: self, next: 0, finished: false }
     }
 }
 
@@ -237,17 +226,8 @@ impl CornerStrategy for StopListStrategy {
                 let k = self.next;
                 self.next += 1;
                 let last = k + 1 == self.list.len();
-                let angle = if last {
-                    self.list.charged_last
-                } else {
-                    self.list.angles[k]
-                };
-                Action::MoveTo {
-                    to: Stop {
-                        angle,
-                        route: self.list.route,
-                    },
-                }
+                let angle = if last { self.list.charged_last } else { self.list.angles[k] };
+                Action::MoveTo { to: Stop { angle, route: self.list.route } }
             }
         }
     }
@@ -264,40 +244,24 @@ mod tests {
         assert_eq!(s.charged_last(), CORNER);
         let n = unirec(0.5, Route::Arc, LastStep::Nominal).unwrap();
         assert_eq!(n.charged_last(), 2.0);
-        assert_eq!(
-            unirec(1.5, Route::Arc, LastStep::Capped).unwrap().angles(),
-            &[CORNER]
-        );
+        assert_eq!(unirec(1.5, Route::Arc, LastStep::Capped).unwrap().angles(), &[CORNER]);
     }
 
     #[test]
     fn exprec_readings() {
         let t = exprec(0.1, ExprecReading::TableI, Route::Arc, LastStep::Capped).unwrap();
         let want = [0.1, 0.2, 0.4, 0.8, CORNER];
-        assert!(
-            t.angles()
-                .iter()
-                .zip(want)
-                .all(|(a, b)| (a - b).abs() < 1e-12)
-        );
+        assert!(t.angles().iter().zip(want).all(|(a, b)| (a - b).abs() < 1e-12));
         let a = exprec(0.1, ExprecReading::Appendix, Route::Arc, LastStep::Capped).unwrap();
         let want = [0.1, 0.3, 0.7, 1.5, CORNER];
-        assert!(
-            a.angles()
-                .iter()
-                .zip(want)
-                .all(|(x, y)| (x - y).abs() < 1e-12)
-        );
+        assert!(a.angles().iter().zip(want).all(|(x, y)| (x - y).abs() < 1e-12));
     }
 
     #[test]
     fn costs_match_the_paper_formula() {
         // UNIREC with δ = τv/D: seeing at stop k costs k·τ + k·δ·D/v = 2kτ.
-        let setup = CornerSetup::new(
-            10.0,
-            crate::protocol::CostModel::new(2.0, 0.0, 0.5).unwrap(),
-        )
-        .unwrap();
+        let setup = CornerSetup::new(10.0, crate::protocol::CostModel::new(2.0, 0.0, 0.5).unwrap())
+            .unwrap();
         let s = unirec(setup.delta(), Route::Arc, LastStep::Nominal).unwrap();
         let c = s.costs(&setup);
         for (k, v) in c.iter().enumerate() {

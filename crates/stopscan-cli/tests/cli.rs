@@ -1,0 +1,300 @@
+//! Every command, run as a user would, with its output checked.
+
+use std::path::PathBuf;
+use std::process::{Command, Output};
+
+use serde_json::Value;
+
+fn stopscan(args: &[&str]) -> Output {
+    Command::new(env!("CARGO_BIN_EXE_stopscan")).args(args).output().expect("the binary runs")
+}
+
+fn json(args: &[&str]) -> Value {
+    let mut all = args.to_vec();
+    all.extend(["--format", "json"]);
+    let out = stopscan(&all);
+    assert!(out.status.success(), "{args:?}: {}", String::from_utf8_lossy(&out.stderr));
+    serde_json::from_slice(&out.stdout)
+        .unwrap_or_else(|e| panic!("{args:?}: {e}: {}", String::from_utf8_lossy(&out.stdout)))
+}
+
+fn f(v: &Value, key: &str) -> f64 {
+    v[key].as_f64().unwrap_or_else(|| panic!("{key} missing in {v}"))
+}
+
+fn temp(name: &str) -> PathBuf {
+    let dir = std::env::temp_dir().join(format!("stopscan-cli-test-{}-{name}", std::process::id()));
+    let _ = std::fs::remove_dir_all(&dir);
+    dir
+}
+
+#[test]
+fn demo_writes_its_outputs() {
+    let dir = temp("demo");
+    let out = stopscan(&["--out", dir.to_str().unwrap()]);
+    assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
+    let text = String::from_utf8_lossy(&out.stdout);
+    for s in ["Circle strategy", "UNIREC", "EXPREC", "POLICY1", "POLICY2", "1.839287"] {
+        assert!(text.contains(s), "missing {s} in\n{text}");
+    }
+    for f in ["run.json", "circle-ratio.svg", "circle-ratio.png"] {
+        assert!(dir.join(f).metadata().unwrap().len() > 100, "{f}");
+    }
+    let run: Value =
+        serde_json::from_str(&std::fs::read_to_string(dir.join("run.json")).unwrap()).unwrap();
+    assert_eq!(run["corner"]["strategies"].as_array().unwrap().len(), 4);
+}
+
+#[test]
+fn corner_circle() {
+    let v = json(&["corner", "circle", "--distance", "40"]);
+    assert_eq!((f(&v, "ratio") * 1e6).floor(), 2_001_525.0);
+    let scans = v["scans"].as_u64().unwrap() as usize;
+    assert_eq!(v["steps"].as_array().unwrap().len(), scans + 1);
+    assert_eq!(v["scan_points"].as_array().unwrap().len(), scans + 1);
+    assert_eq!(f(&v, "distance"), 40.0);
+}
+
+#[test]
+fn corner_thresholds() {
+    let v = json(&["corner", "thresholds", "--count", "6"]);
+    let t = v["thresholds"].as_array().unwrap();
+    assert_eq!(t.len(), 6);
+    assert!((f(&t[3], "distance") - 4.400_876).abs() < 1e-6);
+    assert!((f(&t[3], "ratio") - 2.168_544).abs() < 1e-6);
+    assert_eq!(t[5]["scans"], 5);
+}
+
+#[test]
+fn corner_optimal() {
+    let v = json(&["corner", "optimal", "--distance", "1", "--scans", "1"]);
+    assert!((f(&v, "ratio") - 1.808_201).abs() < 1e-6);
+    assert_eq!(v["scan_points"].as_array().unwrap().len(), 1);
+    assert_eq!(v["scans"], 1);
+}
+
+#[test]
+fn corner_ratio_keys_and_values() {
+    let v = json(&["corner", "ratio", "--strategy", "unirec", "--delta", "0.000001"]);
+    for k in ["strategy", "delta", "worst_ratio", "theta_at_worst", "asymptotic_ratio"] {
+        assert!(!v[k].is_null(), "{k}");
+    }
+    assert!((f(&v, "worst_ratio") - std::f64::consts::PI).abs() < 1e-4);
+    let c = json(&["corner", "ratio", "--strategy", "circle", "--delta", "0.025"]);
+    assert!((f(&c, "worst_ratio") - 2.001_525).abs() < 1e-5);
+    let s =
+        json(&["corner", "ratio", "--strategy", "stops", "--delta", "0.1", "--stops-deg", "30,60"]);
+    assert_eq!(s["stops"], 3);
+    let e = json(&[
+        "corner",
+        "ratio",
+        "--strategy",
+        "exprec",
+        "--delta",
+        "0.1",
+        "--exprec",
+        "appendix",
+    ]);
+    assert!(f(&e, "worst_ratio") >= 1.0);
+}
+
+#[test]
+fn corner_collapse() {
+    let v = json(&["corner", "collapse", "--ratio", "1.99"]);
+    assert_eq!(v["reached"], false);
+    assert!(f(&v, "farthest") <= f(&v, "bound"));
+}
+
+#[test]
+fn corner_policy_with_images_and_both_solvers() {
+    let dir = temp("policy");
+    let v = json(&[
+        "corner",
+        "policy",
+        "--belief",
+        "normal:60,5",
+        "--memory",
+        "last",
+        "--solver",
+        "general",
+        "--out",
+        dir.to_str().unwrap(),
+    ]);
+    assert_eq!(v["general_solver"]["agrees_with_backward_induction"], true);
+    assert_eq!(v["stops"], 18);
+    assert!(dir.join("policy-mdp2.png").exists() && dir.join("policy-mdp2.svg").exists());
+    let m1 = json(&[
+        "corner",
+        "policy",
+        "--belief",
+        "uniform:0,180",
+        "--memory",
+        "none",
+        "--step-deg",
+        "1",
+    ]);
+    assert_eq!(m1["stops"], 90);
+    assert!(f(&m1, "expected_time") > 0.0);
+}
+
+#[test]
+fn corner_simulate_is_seeded() {
+    let args = [
+        "corner",
+        "simulate",
+        "--strategy",
+        "all",
+        "--belief",
+        "normal:60,5",
+        "--truth",
+        "uniform:0,180",
+        "--samples",
+        "500",
+        "--seed",
+        "3",
+    ];
+    let a = json(&args);
+    let b = json(&args);
+    assert_eq!(a, b, "the same seed gives the same output");
+    let r = a["results"].as_array().unwrap();
+    assert_eq!(r.len(), 5);
+    for x in r {
+        let (e, mc, se) =
+            (f(x, "expected_time"), f(&x["monte_carlo"], "mean"), f(&x["monte_carlo"], "std_err"));
+        assert!((e - mc).abs() <= 5.0 * se + 1e-9, "{x}");
+    }
+    let mut other = args.to_vec();
+    let last = other.len() - 1;
+    other[last] = "4";
+    assert_ne!(json(&other), a);
+}
+
+#[test]
+fn reproduce_every_id() {
+    let dir = temp("repro");
+    for id in [
+        "corner-table-2",
+        "corner-table-3",
+        "corner-table-4",
+        "corner-fig-4",
+        "corner-fig-6",
+        "corner-fig-7",
+        "corner-fig-8",
+        "circle-table-1",
+        "circle-fig-7",
+    ] {
+        let v = json(&["reproduce", id, "--out", dir.to_str().unwrap()]);
+        assert_eq!(v["id"], id);
+        assert!(!v["model"].as_array().unwrap().is_empty());
+        let rows = v["rows"].as_array().unwrap();
+        assert!(!rows.is_empty(), "{id}");
+        for r in rows {
+            assert!(r["label"].is_string() && r["ours"].is_number(), "{id}: {r}");
+            assert!(r.get("paper").is_some() && r.get("rel_diff").is_some());
+        }
+        assert!(dir.join(format!("{id}.json")).exists());
+    }
+    let t1 = json(&["reproduce", "circle-table-1"]);
+    for r in t1["rows"].as_array().unwrap() {
+        assert!(f(r, "rel_diff").abs() < 1e-6, "{r}");
+    }
+    for chart in [
+        "corner-fig-7.png",
+        "corner-fig-8-left.svg",
+        "circle-fig-7-small.png",
+        "corner-fig-4-mdp2.png",
+    ] {
+        assert!(dir.join(chart).exists(), "{chart}");
+    }
+}
+
+#[test]
+fn bench_prints_the_contract() {
+    for (t, n) in [("mdp", "90"), ("circle", "1000"), ("ratio", "100")] {
+        let v = json(&["bench", t, "--n", n, "--repeat", "1"]);
+        for k in ["name", "n", "seconds_median", "per_second"] {
+            assert!(!v[k].is_null(), "{t}: {k}");
+        }
+        assert!(f(&v, "per_second") > 0.0);
+    }
+    let g = json(&["bench", "mdp", "--solver", "general", "--n", "30", "--repeat", "1"]);
+    assert_eq!(g["name"], "mdp2-policy-iteration");
+}
+
+#[test]
+fn table_output_is_stable() {
+    let a = stopscan(&["corner", "thresholds", "--count", "3"]);
+    let text = String::from_utf8(a.stdout).unwrap();
+    assert_eq!(
+        text,
+        "scans  maximal d  c at upper bound\n-----  ---------  ----------------\n0       0.618034          1.618034\n1       1.530414          2.040287\n2       2.799395          2.155363\n"
+    );
+}
+
+#[test]
+fn out_file_gets_the_json() {
+    let dir = temp("outfile");
+    let path = dir.join("t.json");
+    let out = stopscan(&["corner", "thresholds", "--count", "2", "--out", path.to_str().unwrap()]);
+    assert!(out.status.success());
+    let v: Value = serde_json::from_str(&std::fs::read_to_string(&path).unwrap()).unwrap();
+    assert_eq!(v["thresholds"].as_array().unwrap().len(), 2);
+}
+
+#[test]
+fn bad_input_is_a_clear_error() {
+    let dir = temp("bad");
+    std::fs::create_dir_all(&dir).unwrap();
+    let hist = dir.join("hist.txt");
+    std::fs::write(&hist, "0 90 1\n90 oops 2\n").unwrap();
+    let spec = format!("histogram:{}", hist.display());
+    let cases: Vec<(Vec<&str>, &str)> = vec![
+        (vec!["corner", "circle", "--distance", "-1"], "--distance"),
+        (vec!["corner", "circle", "--distance", "nan"], "--distance"),
+        (vec!["corner", "ratio", "--strategy", "unirec", "--delta", "0"], "--delta"),
+        (
+            vec![
+                "corner",
+                "ratio",
+                "--strategy",
+                "stops",
+                "--delta",
+                "0.1",
+                "--stops-deg",
+                "60,30",
+            ],
+            "not finite, positive and above",
+        ),
+        (vec!["corner", "policy", "--belief", "normal:60"], "normal:60"),
+        (vec!["corner", "policy", "--belief", "beta:1,2"], "unknown kind"),
+        (vec!["corner", "policy", "--belief", &spec], "hist.txt:2"),
+        (vec!["corner", "policy", "--belief", "histogram:/no/such/file"], "/no/such/file"),
+        (vec!["corner", "policy", "--belief", "uniform:0,180", "--step-deg", "0"], "step"),
+        (vec!["corner", "policy", "--belief", "uniform:0,180", "--speed", "0"], "speed"),
+        (vec!["corner", "simulate", "--strategy", "warp"], "unknown strategy"),
+        (vec!["corner", "optimal", "--distance", "1", "--scans", "99"], "--scans"),
+        (vec!["reproduce", "table-99"], "unknown reproduction"),
+        (
+            vec![
+                "corner",
+                "ratio",
+                "--strategy",
+                "unirec",
+                "--delta",
+                "0.1",
+                "--route",
+                "chord",
+                "--last-step",
+                "nominal",
+            ],
+            "arc route only",
+        ),
+    ];
+    for (args, needle) in cases {
+        let out = stopscan(&args);
+        assert_eq!(out.status.code(), Some(2), "{args:?} should fail");
+        let err = String::from_utf8_lossy(&out.stderr);
+        assert!(err.contains(needle), "{args:?}: {err:?} should mention {needle:?}");
+        assert!(!err.contains("panicked"), "{args:?} panicked: {err}");
+    }
+}
