@@ -223,7 +223,7 @@ pub(crate) struct PolicyArgs {
 
 #[derive(Debug, Args)]
 pub(crate) struct SimulateArgs {
-    /// Strategies, comma-separated: unirec, exprec, policy1, policy2, circle, or all.
+    /// Strategies from the registry, comma-separated, or all (see --help).
     #[arg(long, value_delimiter = ',', default_value = "all")]
     pub(crate) strategy: Vec<String>,
     /// What the robot believes (degrees, as for `corner policy`).

@@ -12,7 +12,8 @@ use stopscan::protocol::CostModel;
 use stopscan::protocol::corner::{AngleDistribution, CornerSetup, LastStep, Route};
 use stopscan::render::{LineChart, Series, write_chart, write_policy_image};
 use stopscan::strategy::corner::mdp::{CornerMdp, Memory, Reading};
-use stopscan::strategy::corner::{ExprecReading, StopList, circle, exprec, unirec};
+use stopscan::strategy::corner::registry;
+use stopscan::strategy::corner::{ExprecReading, StopList, circle};
 
 use crate::cli::{self, CornerCommand, Global, RatioStrategy, Readings};
 use crate::output::{Table, emit, num, write_json_atomic};
@@ -168,34 +169,44 @@ fn collapse(c: f64, d: Option<f64>, g: &Global) -> anyhow::Result<()> {
     })
 }
 
+fn build_options(r: Readings) -> registry::BuildOptions {
+    registry::BuildOptions {
+        last_step: match r.last_step {
+            cli::LastStepArg::Capped => LastStep::Capped,
+            cli::LastStepArg::Nominal => LastStep::Nominal,
+        },
+        exprec: match r.exprec {
+            cli::ExprecArg::TableI => ExprecReading::TableI,
+            cli::ExprecArg::Appendix => ExprecReading::Appendix,
+        },
+        route: match r.route {
+            cli::RouteArg::Arc => Route::Arc,
+            cli::RouteArg::Chord => Route::Chord,
+        },
+        ..registry::BuildOptions::default()
+    }
+}
+
 fn stop_list(
     strategy: RatioStrategy,
     delta: f64,
     stops_deg: &[f64],
     r: Readings,
 ) -> anyhow::Result<StopList> {
-    let route = match r.route {
-        cli::RouteArg::Arc => Route::Arc,
-        cli::RouteArg::Chord => Route::Chord,
-    };
-    let last = match r.last_step {
-        cli::LastStepArg::Capped => LastStep::Capped,
-        cli::LastStepArg::Nominal => LastStep::Nominal,
-    };
-    let reading = match r.exprec {
-        cli::ExprecArg::TableI => ExprecReading::TableI,
-        cli::ExprecArg::Appendix => ExprecReading::Appendix,
-    };
+    let o = build_options(r);
+    // Only δ matters for these: normalise τ = v = 1, D = 1/δ.
+    let unit = CornerSetup::new(1.0 / delta, CostModel::default())?;
+    let none = AngleDistribution::uniform(0.0, std::f64::consts::PI)?;
     Ok(match strategy {
-        RatioStrategy::Unirec => unirec(delta, route, last)?,
-        RatioStrategy::Exprec => exprec(delta, reading, route, last)?,
-        RatioStrategy::Circle => circle::solve(1.0 / delta).stop_list(),
+        RatioStrategy::Unirec => registry::build("unirec", &unit, &none, &o)?,
+        RatioStrategy::Exprec => registry::build("exprec", &unit, &none, &o)?,
+        RatioStrategy::Circle => registry::build("circle", &unit, &none, &o)?,
         RatioStrategy::Stops => {
             if stops_deg.is_empty() {
                 bail!("--strategy stops needs --stops-deg A,B,C (degrees, increasing)");
             }
             let rad: Vec<f64> = stops_deg.iter().map(|d| d.to_radians()).collect();
-            StopList::from_nominal(&rad, route, last)?
+            StopList::from_nominal(&rad, o.route, o.last_step)?
         }
     })
 }
@@ -313,31 +324,14 @@ fn simulate(a: &cli::SimulateArgs, g: &Global) -> anyhow::Result<()> {
     }
     let mut names: Vec<String> = a.strategy.iter().map(|s| s.trim().to_lowercase()).collect();
     if names.iter().any(|n| n == "all") {
-        names = ["unirec", "exprec", "policy1", "policy2", "circle"].map(String::from).to_vec();
+        names = registry::names().map(String::from).collect();
     }
+    let opts =
+        registry::BuildOptions { mdp_step: a.step_deg.to_radians(), ..build_options(a.readings) };
     let delta = setup.delta();
     let mut results = Vec::new();
     for (k, name) in names.iter().enumerate() {
-        let list = match name.as_str() {
-            "unirec" => stop_list(RatioStrategy::Unirec, delta, &[], a.readings)?,
-            "exprec" => stop_list(RatioStrategy::Exprec, delta, &[], a.readings)?,
-            "circle" => stop_list(RatioStrategy::Circle, delta, &[], a.readings)?,
-            "policy1" | "policy2" => {
-                let memory = if name == "policy1" { Memory::None } else { Memory::Last };
-                CornerMdp {
-                    setup,
-                    step: a.step_deg.to_radians(),
-                    memory,
-                    reading: Reading::Conditional,
-                    belief: belief.clone(),
-                }
-                .solve()?
-                .stop_list
-            }
-            other => bail!(
-                "unknown strategy {other:?}; use unirec, exprec, policy1, policy2, circle or all"
-            ),
-        };
+        let list = registry::build(name, &setup, &belief, &opts)?;
         let e = expected(&list, &setup, &truth);
         let mc = exp::monte_carlo(
             &list,

@@ -9,10 +9,24 @@ mod output;
 use std::io::Write;
 use std::process::ExitCode;
 
-use clap::Parser;
+use clap::{CommandFactory, FromArgMatches};
 
 fn main() -> ExitCode {
-    let args = cli::Cli::parse();
+    // The strategy registry writes the help of `--strategy`.
+    let command = cli::Cli::command().mut_subcommand("corner", |c| {
+        c.mut_subcommand("simulate", |s| {
+            s.mut_arg("strategy", |a| {
+                a.long_help(format!(
+                    "Strategies, comma-separated, or all:\n{}",
+                    stopscan::strategy::corner::registry::help()
+                ))
+            })
+        })
+    });
+    let args = match cli::Cli::from_arg_matches(&command.get_matches()) {
+        Ok(a) => a,
+        Err(e) => e.exit(),
+    };
     match run(&args) {
         Ok(()) => ExitCode::SUCCESS,
         Err(err) => {

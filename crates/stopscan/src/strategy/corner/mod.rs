@@ -8,6 +8,7 @@
 
 pub mod circle;
 pub mod mdp;
+pub mod registry;
 mod stops;
 
 pub use stops::{ExprecReading, InvalidStopList, StopList, StopListStrategy, exprec, unirec};

@@ -1,0 +1,301 @@
+//! Figures 4, 6, 7 and 8 of the corner paper; Table 1 and Fig. 7 of the circle paper.
+
+use super::{LineupOptions, fig5, lineup, model_err, paper_setup, ratio_curve};
+use crate::experiment::{ExperimentError, Reproduction, Row};
+use crate::offline::corner::{expected, optimal::optimal_scans};
+use crate::protocol::corner::{AngleDistribution, CornerSetup, LastStep};
+use crate::render::{LineChart, Series};
+use crate::strategy::corner::circle;
+use crate::strategy::corner::mdp::{CornerMdp, Memory, Reading};
+
+pub(super) fn corner_policy_figure(id: &str) -> Result<Reproduction, ExperimentError> {
+    let setup = paper_setup(2.0);
+    let (dist_no, memories): (usize, &[Memory]) = if id == "corner-fig-4" {
+        (4, &[Memory::Last])
+    } else {
+        (3, &[Memory::None, Memory::Last])
+    };
+    let belief = fig5(dist_no)?;
+    let mut rows = Vec::new();
+    let mut images = Vec::new();
+    for &memory in memories {
+        let m = CornerMdp {
+            setup,
+            step: 5f64.to_radians(),
+            memory,
+            reading: Reading::Conditional,
+            belief: belief.clone(),
+        };
+        let p = m.solve().map_err(model_err)?;
+        let name = if memory == Memory::Last { "MDP2" } else { "MDP1" };
+        rows.push(Row::new(
+            format!("{name}: scans if never seen"),
+            None,
+            p.scan_stops.len() as f64,
+        ));
+        rows.push(Row::new(
+            format!("{name}: expected time (s)"),
+            None,
+            expected(&p.stop_list, &setup, &belief).time,
+        ));
+        images.push((
+            format!("{id}-{}", name.to_lowercase()),
+            format!("{name} optimal policy, distribution {dist_no}, δ = 5°"),
+            p.image,
+        ));
+    }
+    Ok(Reproduction {
+        id: id.into(),
+        model: vec![
+            format!(
+                "D = 10 m, v = 0.5 m/s, τ = 2 s, δ = 5°, distribution {dist_no} of Fig. 5, exact (conditional) transition probabilities"
+            ),
+            "image rows are the robot's stop i (downwards), columns the last scan's stop j".into(),
+        ],
+        rows,
+        notes: vec!["the paper prints no numbers for this figure; compare the images".into()],
+        charts: vec![],
+        images,
+    })
+}
+
+fn lineup_times(
+    setup: &CornerSetup,
+    belief: &AngleDistribution,
+    truth: &AngleDistribution,
+) -> Result<Vec<f64>, ExperimentError> {
+    let o = LineupOptions { last_step: LastStep::Nominal, ..LineupOptions::default() };
+    Ok(lineup(setup, belief, o)?.iter().map(|c| expected(&c.list, setup, truth).time).collect())
+}
+
+const NAMES: [&str; 4] = ["UNIREC", "EXPREC", "POLICY1", "POLICY2"];
+
+pub(super) fn corner_fig_7() -> Result<Reproduction, ExperimentError> {
+    let belief = fig5(3)?;
+    let taus = [0.5, 1.0, 2.0, 3.0, 4.0, 5.0, 7.5, 10.0, 12.5, 15.0, 20.0];
+    let mut series: Vec<Vec<(f64, f64)>> = vec![Vec::new(); 4];
+    let mut rows = Vec::new();
+    let mut p2_wins = 0;
+    for &tau in &taus {
+        let t = lineup_times(&paper_setup(tau), &belief, &belief)?;
+        for (k, v) in t.iter().enumerate() {
+            series[k].push((tau, *v));
+            rows.push(Row::new(format!("τ = {tau} s / {}", NAMES[k]), None, *v));
+        }
+        if t[3] <= t[2] + 1e-9 {
+            p2_wins += 1;
+        }
+    }
+    let chart = LineChart {
+        title: "Expected time vs reconstruction time (distribution 3)".into(),
+        x_label: "reconstruction time τ (s)".into(),
+        y_label: "expected time to see the edge (s)".into(),
+        series: series
+            .into_iter()
+            .zip(NAMES)
+            .map(|(p, n)| Series::line(n, p).with_markers())
+            .collect(),
+    };
+    Ok(Reproduction {
+        id: "corner-fig-7".into(),
+        model: vec![
+            "Fig. 7's caption is cut; we keep distribution 3 (uniform, no prior knowledge) and vary τ from 0.5 s to 20 s".into(),
+            "D = 10 m, v = 0.5 m/s, δ = τv/D, MDP step 5°, exact transition probabilities, nominal last step".into(),
+        ],
+        rows,
+        notes: vec![format!("POLICY2 ≤ POLICY1 at {p2_wins} of {} reconstruction times (the paper: POLICY2 outperforms POLICY1 as scans get costly)", taus.len())],
+        charts: vec![("corner-fig-7".into(), chart)],
+        images: vec![],
+    })
+}
+
+pub(super) fn corner_fig_8() -> Result<Reproduction, ExperimentError> {
+    let setup = paper_setup(2.0);
+    let truths = [
+        ("left", fig5(1)?, "truth N(60°, 5°)"),
+        (
+            "right",
+            AngleDistribution::uniform(0.0, std::f64::consts::FRAC_PI_2)
+                .map_err(model_err)?
+                .bucketed(5f64.to_radians())
+                .map_err(model_err)?,
+            "truth uniform on [0°, 90°]",
+        ),
+    ];
+    let mut rows = Vec::new();
+    let mut charts = Vec::new();
+    let mut notes = Vec::new();
+    for (side, truth, what) in truths {
+        let mut series: Vec<Vec<(f64, f64)>> = vec![Vec::new(); 4];
+        for mu in (30..=90).step_by(5) {
+            let belief = AngleDistribution::normal(f64::from(mu).to_radians(), 5f64.to_radians())
+                .and_then(|d| d.bucketed(5f64.to_radians()))
+                .map_err(model_err)?;
+            for (k, v) in lineup_times(&setup, &belief, &truth)?.into_iter().enumerate() {
+                series[k].push((f64::from(mu), v));
+                rows.push(Row::new(format!("{side}: belief N({mu}°, 5°) / {}", NAMES[k]), None, v));
+            }
+        }
+        let spread = |s: &[(f64, f64)]| {
+            s.iter().map(|p| p.1).fold(f64::MIN, f64::max)
+                - s.iter().map(|p| p.1).fold(f64::MAX, f64::min)
+        };
+        let (p1, p2) = (spread(&series[2]), spread(&series[3]));
+        let verdict = if p2 > p1 + 1e-9 {
+            "holds here"
+        } else if (p2 - p1).abs() <= 1e-9 {
+            "is not visible here (equal spread)"
+        } else {
+            "does not hold here"
+        };
+        notes.push(format!(
+            "{what}: over the beliefs POLICY1 varies by {p1:.2} s and POLICY2 by {p2:.2} s; the paper's claim that MDP2 is more sensitive to wrong beliefs {verdict}"
+        ));
+        charts.push((
+            format!("corner-fig-8-{side}"),
+            LineChart {
+                title: format!("Wrong beliefs: policies for N(µ, 5°), {what}"),
+                x_label: "belief mean µ (degrees)".into(),
+                y_label: "expected time to see the edge (s)".into(),
+                series: series
+                    .into_iter()
+                    .zip(NAMES)
+                    .map(|(p, n)| Series::line(n, p).with_markers())
+                    .collect(),
+            },
+        ));
+    }
+    Ok(Reproduction {
+        id: "corner-fig-8".into(),
+        model: vec![
+            "D = 10 m, v = 0.5 m/s, τ = 2 s, δ = 0.1, MDP step 5°, beliefs N(µ, 5°) for µ = 30°..90° on 5° buckets".into(),
+            "exact expected times under the truth instead of 1000-sample averages".into(),
+        ],
+        rows,
+        notes,
+        charts,
+        images: vec![],
+    })
+}
+
+const TABLE_1: [(f64, f64); 6] = [
+    (0.618_034, 1.618_034),
+    (1.530_414, 2.040_287),
+    (2.799_395, 2.155_363),
+    (4.400_876, 2.168_544),
+    (6.316_892, 2.147_994),
+    (8.514_200, 2.118_498),
+];
+
+pub(super) fn circle_table_1() -> Reproduction {
+    let mut rows = Vec::new();
+    for (t, (d, c)) in circle::thresholds(TABLE_1.len()).iter().zip(TABLE_1) {
+        rows.push(Row::new(format!("{} scans: maximal d", t.scans), Some(d), t.distance));
+        rows.push(Row::new(format!("{} scans: c at upper bound", t.scans), Some(c), t.ratio));
+    }
+    Reproduction {
+        id: "circle-table-1".into(),
+        model: vec![
+            "units: scan cost 1, speed 1; 'scans' counts intermediate scans (the scan at the corner is extra), as Table 1 does".into(),
+            "c(d) by bisection of recursion (1) to adjacent floats; thresholds by bisection in d of the scan count".into(),
+        ],
+        rows,
+        notes: vec!["the paper rounds to six digits; every row agrees to all printed digits".into()],
+        charts: vec![],
+        images: vec![],
+    }
+}
+
+pub(super) fn circle_fig_7(seed: u64) -> Reproduction {
+    let small = ratio_curve(10.0, 2000);
+    let large = ratio_curve(100.0, 2000);
+    // The maximum sits on a cusp (a threshold); refine around the sampled maximum.
+    let &(d0, _) = small.iter().max_by(|a, b| a.1.total_cmp(&b.1)).expect("non-empty");
+    let (mut lo, mut hi) = (d0 - 0.01, d0 + 0.01);
+    for _ in 0..200 {
+        let (m1, m2) = (lo + (hi - lo) / 3.0, hi - (hi - lo) / 3.0);
+        if circle::ratio(m1) < circle::ratio(m2) { lo = m1 } else { hi = m2 }
+    }
+    let d_star = 0.5 * (lo + hi);
+    let by_scans: Vec<_> = (1..=6).map(|k| optimal_scans(4.4, k, seed)).collect();
+    let best = by_scans.iter().min_by(|a, b| a.ratio.total_cmp(&b.ratio)).expect("six runs");
+    let mut rows = vec![
+        Row::new("max c(d)", Some(2.168_544), circle::ratio(d_star)),
+        Row::new("argmax d", Some(4.400_875), d_star),
+        Row::new("c(40)", Some(2.001_525), circle::ratio(40.0)),
+        Row::new("c(4.4), circle strategy", Some(2.1685), circle::ratio(4.4)),
+        Row::new(
+            "c(4.4), global optimum with 3 scans, the circle strategy's count",
+            Some(2.12),
+            by_scans[2].ratio,
+        ),
+        Row::new(
+            format!("c(4.4), global optimum over 1–6 scans (best: {} scans)", best.scans),
+            Some(2.12),
+            best.ratio,
+        ),
+        Row::new(
+            "c(1), global optimum with 1 scan",
+            Some(1.808_201),
+            optimal_scans(1.0, 1, seed).ratio,
+        ),
+    ];
+    for c in [1.9, 1.99, 1.999] {
+        let r = circle::collapse(10.0 / (2.0 - c), c);
+        rows.push(Row::new(
+            format!("Theorem 1, c = {c}: farthest distance reached at d = {:.0}", r.distance),
+            None,
+            r.farthest,
+        ));
+        rows.push(Row::new(format!("Theorem 1, c = {c}: bound 1/(2 − c)"), None, r.bound));
+    }
+    for d in [100.0, 1000.0, 10000.0] {
+        rows.push(Row::new(format!("c({d}) − 2 (→ 0, Theorem 2)"), None, circle::ratio(d) - 2.0));
+    }
+    let lb = |pts: &[(f64, f64)]| pts.iter().map(|&(d, _)| (d, 2.0)).collect::<Vec<_>>();
+    let charts = vec![
+        (
+            "circle-fig-7-small".into(),
+            LineChart {
+                title: "Circle strategy: c(d) for small d".into(),
+                x_label: "distance d (units of v·τ)".into(),
+                y_label: "competitive ratio c".into(),
+                series: vec![
+                    Series::line("c(d)", small.clone()),
+                    Series::line("lower bound 2 (Theorem 1)", lb(&small)).dashed(),
+                ],
+            },
+        ),
+        (
+            "circle-fig-7-large".into(),
+            LineChart {
+                title: "Circle strategy: c(d) for larger d".into(),
+                x_label: "distance d (units of v·τ)".into(),
+                y_label: "competitive ratio c".into(),
+                series: vec![
+                    Series::line("c(d)", large.clone()),
+                    Series::line("lower bound 2 (Theorem 1)", lb(&large)).dashed(),
+                ],
+            },
+        ),
+    ];
+    Reproduction {
+        id: "circle-fig-7".into(),
+        model: vec![
+            "units: scan cost 1, speed 1; c(d) on 2000 distances in (0, 10] and in (0, 100]".into(),
+            "the global optimum places the scan points anywhere in the plane (restarted Nelder–Mead over 2k coordinates, exact worst-case ratio)".into(),
+        ],
+        rows,
+        notes: vec![
+            format!(
+                "global optimum at d = 4.4 by number of intermediate scans: {}; the paper's Fig. 6 solution (≈ 2.12) is not the global optimum of its own model, and the circle strategy is {:.1}% above the optimum there, not 'within about 2%'",
+                by_scans.iter().map(|o| format!("{} → {:.6}", o.scans, o.ratio)).collect::<Vec<_>>().join(", "),
+                100.0 * (circle::ratio(4.4) / best.ratio - 1.0)
+            ),
+            "every worst-case ratio of the optimiser is exact (breakpoint enumeration); a brute-force sweep over 200,000 edge angles agrees to 2e-6 (tests/corner.rs)".into(),
+            "Theorem 1: with c < 2 the recursion collapses before the corner and never gets further than 1/(2 − c) from the start".into(),
+        ],
+        charts,
+        images: vec![],
+    }
+}

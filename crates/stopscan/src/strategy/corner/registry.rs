@@ -1,0 +1,121 @@
+//! The corner strategies selectable by name: one list for lookup, building and help text.
+
+use serde::{Deserialize, Serialize};
+
+use super::mdp::{CornerMdp, Memory, Reading};
+use super::{ExprecReading, StopList, circle, exprec, unirec};
+use crate::protocol::corner::{AngleDistribution, CornerSetup, LastStep, Route};
+
+/// `(name, one-line summary)` of every corner strategy, in display order.
+pub const REGISTRY: &[(&str, &str)] = &[
+    ("unirec", "scans at δ, 2δ, 3δ, … with δ = τv/D (corner paper, Table I; ratio → π)"),
+    ("exprec", "scans at exponentially spaced stops (corner paper, Table I; ratio → 2.2214)"),
+    ("circle", "the circle paper's strategy at d = D/(vτ): chords with equalised ratio c(d) → 2"),
+    ("policy1", "MDP1's optimal policy for the belief (memoryless states s_i, s'_i)"),
+    ("policy2", "MDP2's optimal policy for the belief (states s_ij, remembers the last scan)"),
+];
+
+/// The names in [`REGISTRY`].
+pub fn names() -> impl Iterator<Item = &'static str> {
+    REGISTRY.iter().map(|r| r.0)
+}
+
+/// One line per strategy, for `--help`.
+pub fn help() -> String {
+    REGISTRY.iter().map(|(n, s)| format!("{n}: {s}")).collect::<Vec<_>>().join("\n")
+}
+
+/// How the registry builds strategies: the readings of the corner paper and the MDP grid.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+pub struct BuildOptions {
+    /// Last-step charge for UNIREC and EXPREC.
+    pub last_step: LastStep,
+    /// Which EXPREC.
+    pub exprec: ExprecReading,
+    /// Route of UNIREC and EXPREC (the circle strategy always drives chords).
+    pub route: Route,
+    /// MDP stop spacing, radians.
+    pub mdp_step: f64,
+    /// MDP transition reading.
+    pub reading: Reading,
+}
+
+impl Default for BuildOptions {
+    fn default() -> Self {
+        Self {
+            last_step: LastStep::Capped,
+            exprec: ExprecReading::TableI,
+            route: Route::Arc,
+            mdp_step: 5f64.to_radians(),
+            reading: Reading::Conditional,
+        }
+    }
+}
+
+/// Why a strategy could not be built.
+#[derive(Debug, Clone, PartialEq, thiserror::Error)]
+#[non_exhaustive]
+pub enum BuildError {
+    /// The name is not in the registry; the message lists the names.
+    #[error("unknown strategy {0:?}; use one of: {1}")]
+    Unknown(String, String),
+    /// The strategy rejected its parameters.
+    #[error("{0}")]
+    Invalid(String),
+}
+
+/// Builds the stop list of the strategy called `name` for a setup and a belief (the
+/// belief is used by the MDP policies only).
+///
+/// # Errors
+/// [`BuildError`] for an unknown name or invalid parameters.
+pub fn build(
+    name: &str,
+    setup: &CornerSetup,
+    belief: &AngleDistribution,
+    o: &BuildOptions,
+) -> Result<StopList, BuildError> {
+    let invalid = |e: &dyn std::fmt::Display| BuildError::Invalid(e.to_string());
+    let delta = setup.delta();
+    let mdp = |memory| {
+        CornerMdp {
+            setup: *setup,
+            step: o.mdp_step,
+            memory,
+            reading: o.reading,
+            belief: belief.clone(),
+        }
+        .solve()
+        .map(|p| p.stop_list)
+        .map_err(|e| invalid(&e))
+    };
+    match name {
+        "unirec" => unirec(delta, o.route, o.last_step).map_err(|e| invalid(&e)),
+        "exprec" => exprec(delta, o.exprec, o.route, o.last_step).map_err(|e| invalid(&e)),
+        "circle" => Ok(circle::solve(setup.normalised_distance()).stop_list()),
+        "policy1" => mdp(Memory::None),
+        "policy2" => mdp(Memory::Last),
+        other => Err(BuildError::Unknown(other.into(), names().collect::<Vec<_>>().join(", "))),
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::protocol::CostModel;
+
+    #[test]
+    fn every_registered_name_builds() {
+        let s = CornerSetup::new(10.0, CostModel::new(2.0, 0.0, 0.5).unwrap()).unwrap();
+        let b = AngleDistribution::parse("uniform:0,180").unwrap();
+        for name in names() {
+            let list = build(name, &s, &b, &BuildOptions::default()).unwrap();
+            assert_eq!(list.angles().last(), Some(&crate::protocol::corner::CORNER), "{name}");
+        }
+        assert!(matches!(
+            build("warp", &s, &b, &BuildOptions::default()),
+            Err(BuildError::Unknown(..))
+        ));
+        assert!(help().lines().count() == REGISTRY.len());
+    }
+}
