@@ -70,6 +70,20 @@ fn lineup_times(
 
 const NAMES: [&str; 4] = ["UNIREC", "EXPREC", "POLICY1", "POLICY2"];
 
+/// Expected time of the four strategies against a swept parameter.
+fn lineup_chart(title: String, x_label: &str, series: Vec<Vec<(f64, f64)>>) -> LineChart {
+    LineChart {
+        title,
+        x_label: x_label.into(),
+        y_label: "expected time to see the edge (s)".into(),
+        series: series
+            .into_iter()
+            .zip(NAMES)
+            .map(|(p, n)| Series::line(n, p).with_markers())
+            .collect(),
+    }
+}
+
 pub(super) fn corner_fig_7() -> Result<Reproduction, ExperimentError> {
     let belief = fig5(3)?;
     let taus = [0.5, 1.0, 2.0, 3.0, 4.0, 5.0, 7.5, 10.0, 12.5, 15.0, 20.0];
@@ -86,16 +100,11 @@ pub(super) fn corner_fig_7() -> Result<Reproduction, ExperimentError> {
             p2_wins += 1;
         }
     }
-    let chart = LineChart {
-        title: "Expected time vs reconstruction time (distribution 3)".into(),
-        x_label: "reconstruction time τ (s)".into(),
-        y_label: "expected time to see the edge (s)".into(),
-        series: series
-            .into_iter()
-            .zip(NAMES)
-            .map(|(p, n)| Series::line(n, p).with_markers())
-            .collect(),
-    };
+    let chart = lineup_chart(
+        "Expected time vs reconstruction time (distribution 3)".into(),
+        "reconstruction time τ (s)",
+        series,
+    );
     Ok(Reproduction {
         id: "corner-fig-7".into(),
         model: vec![
@@ -153,16 +162,11 @@ pub(super) fn corner_fig_8() -> Result<Reproduction, ExperimentError> {
         ));
         charts.push((
             format!("corner-fig-8-{side}"),
-            LineChart {
-                title: format!("Wrong beliefs: policies for N(µ, 5°), {what}"),
-                x_label: "belief mean µ (degrees)".into(),
-                y_label: "expected time to see the edge (s)".into(),
-                series: series
-                    .into_iter()
-                    .zip(NAMES)
-                    .map(|(p, n)| Series::line(n, p).with_markers())
-                    .collect(),
-            },
+            lineup_chart(
+                format!("Wrong beliefs: policies for N(µ, 5°), {what}"),
+                "belief mean µ (degrees)",
+                series,
+            ),
         ));
     }
     Ok(Reproduction {

@@ -83,6 +83,18 @@ pub enum CornerMdpError {
     Solver(#[from] MdpError),
 }
 
+/// The discretised circle of a [`CornerMdp`].
+struct Grid {
+    /// Stop intervals; stops are `0..=n`.
+    n: usize,
+    /// Stop angles.
+    phi: Vec<f64>,
+    /// The belief's CDF at each stop.
+    cdf: Vec<f64>,
+    /// Travel time from stop `i` to `i + 1`.
+    step: Vec<f64>,
+}
+
 /// What each state does, for policy images (the corner paper's Fig. 4 and Fig. 6).
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
 #[serde(rename_all = "snake_case")]
@@ -113,7 +125,8 @@ pub struct CornerPolicy {
 }
 
 impl CornerMdp {
-    fn grid(&self) -> Result<(usize, Vec<f64>), CornerMdpError> {
+    /// The discretisation: stops, the belief's CDF at each, and the travel time of each step.
+    fn grid(&self) -> Result<Grid, CornerMdpError> {
         if !(self.step.is_finite() && self.step > 0.0 && self.step <= CORNER + 1e-12) {
             return Err(CornerMdpError::Step(self.step.to_degrees()));
         }
@@ -121,8 +134,12 @@ impl CornerMdp {
         if self.memory == Memory::Last && n > 20_000 {
             return Err(CornerMdpError::TooLarge(n));
         }
-        let phi = (0..=n).map(|i| (i as f64 * self.step).min(CORNER)).collect();
-        Ok((n, phi))
+        let phi: Vec<f64> = (0..=n).map(|i| (i as f64 * self.step).min(CORNER)).collect();
+        let cdf = phi.iter().map(|&p| self.belief.cdf(p)).collect();
+        let step = (0..n)
+            .map(|i| self.setup.travel(phi[i], phi[i + 1], Route::Arc) / self.setup.cost.speed)
+            .collect();
+        Ok(Grid { n, phi, cdf, step })
     }
 
     /// Probability that a scan at stop `i` misses the edge, given the last scan at `j`.
@@ -149,27 +166,16 @@ impl CornerMdp {
     /// MDP2: O(n²) time, O(n²) bits for the policy and O(n) floats for values.
     /// MDP1: O(n) time and space.
     pub fn solve(&self) -> Result<CornerPolicy, CornerMdpError> {
-        let (n, phi) = self.grid()?;
-        let cdf: Vec<f64> = phi.iter().map(|&p| self.belief.cdf(p)).collect();
-        let (tau, mt) = (self.setup.cost.scan_time, self.setup.cost.move_time);
-        let step: Vec<f64> = (0..n)
-            .map(|i| self.setup.travel(phi[i], phi[i + 1], Route::Arc) / self.setup.cost.speed)
-            .collect();
-        match self.memory {
-            Memory::Last => Ok(self.solve_mdp2(n, &phi, &cdf, &step, tau, mt)),
-            Memory::None => Ok(self.solve_mdp1(n, &phi, &cdf, &step, tau, mt)),
-        }
+        let g = self.grid()?;
+        Ok(match self.memory {
+            Memory::Last => self.solve_mdp2(&g),
+            Memory::None => self.solve_mdp1(&g),
+        })
     }
 
-    fn solve_mdp2(
-        &self,
-        n: usize,
-        phi: &[f64],
-        cdf: &[f64],
-        step: &[f64],
-        tau: f64,
-        mt: f64,
-    ) -> CornerPolicy {
+    fn solve_mdp2(&self, g: &Grid) -> CornerPolicy {
+        let (n, cdf, step) = (g.n, &g.cdf, &g.step);
+        let (tau, mt) = (self.setup.cost.scan_time, self.setup.cost.move_time);
         // scan[tri(i, j)] for j < i: true when scanning beats moving at s_{i,j}.
         let tri = |i: usize, j: usize| i * (i - 1) / 2 + j;
         let mut scan = vec![false; n * (n + 1) / 2];
@@ -228,18 +234,12 @@ impl CornerMdp {
                     .collect()
             })
             .collect();
-        Self::finish(n, n * (n + 1) / 2 + n, model_value, phi, scan_stops, image)
+        Self::finish(n, n * (n + 1) / 2 + n, model_value, &g.phi, scan_stops, image)
     }
 
-    fn solve_mdp1(
-        &self,
-        n: usize,
-        phi: &[f64],
-        cdf: &[f64],
-        step: &[f64],
-        tau: f64,
-        mt: f64,
-    ) -> CornerPolicy {
+    fn solve_mdp1(&self, g: &Grid) -> CornerPolicy {
+        let (n, cdf, step) = (g.n, &g.cdf, &g.step);
+        let (tau, mt) = (self.setup.cost.scan_time, self.setup.cost.move_time);
         let mut w = vec![0.0; n + 1];
         let mut scan = vec![false; n + 1];
         w[n] = tau;
@@ -257,7 +257,7 @@ impl CornerMdp {
             (0..=n).map(|i| if scan[i] { Cell::Reconstruct } else { Cell::Move }).collect(),
             (0..=n).map(|i| if i == n { Cell::Inaccessible } else { Cell::Move }).collect(),
         ];
-        Self::finish(n, 2 * n, model_value, phi, scan_stops, image)
+        Self::finish(n, 2 * n, model_value, &g.phi, scan_stops, image)
     }
 
     fn miss1(&self, cdf: &[f64], i: usize) -> f64 {
@@ -289,7 +289,7 @@ impl CornerMdp {
     /// [`CornerMdpError`] for a bad step.
     #[expect(clippy::needless_range_loop, reason = "state ids are computed from the stop index")]
     pub fn to_general(&self) -> Result<(Mdp, usize), CornerMdpError> {
-        let (n, phi, cdf, step) = self.tables()?;
+        let Grid { n, cdf, step, .. } = self.grid()?;
         let (tau, mt) = (self.setup.cost.scan_time, self.setup.cost.move_time);
         let mut m = Mdp::new();
         match self.memory {
@@ -342,20 +342,9 @@ impl CornerMdp {
                     }
                 }
                 m.add_state(&[]);
-                let _ = phi;
                 Ok((m, n + 1))
             }
         }
-    }
-
-    #[expect(clippy::type_complexity, reason = "private helper returning the discretisation")]
-    fn tables(&self) -> Result<(usize, Vec<f64>, Vec<f64>, Vec<f64>), CornerMdpError> {
-        let (n, phi) = self.grid()?;
-        let cdf: Vec<f64> = phi.iter().map(|&p| self.belief.cdf(p)).collect();
-        let step = (0..n)
-            .map(|i| self.setup.travel(phi[i], phi[i + 1], Route::Arc) / self.setup.cost.speed)
-            .collect();
-        Ok((n, phi, cdf, step))
     }
 
     /// Solves [`CornerMdp::to_general`] with policy iteration; returns the start value and the
