@@ -197,7 +197,7 @@ fn reproduce_every_id() {
         "corner-fig-7.png",
         "corner-fig-8-left.svg",
         "circle-fig-7-small.png",
-        "corner-fig-4-mdp2.png",
+        "corner-fig-4-mdp2-conditional.png",
     ] {
         assert!(dir.join(chart).exists(), "{chart}");
     }

@@ -168,9 +168,10 @@ fn draw_chart<DB: DrawingBackend>(
     root.present().map_err(|e| e.to_string())
 }
 
-/// Writes a policy image like the corner paper's Fig. 4 / Fig. 6 as `stem.svg` and `stem.png`:
-/// row `i` (downwards) is the robot's stop, column `j` the last scan's stop; blue is
-/// inaccessible, green reconstruct, red move.
+/// Writes a policy image like the corner paper's Fig. 4 / Fig. 6 as `stem.svg` and `stem.png`.
+/// For MDP2, row `i` (downwards) is the robot's stop and column `j` the last scan's stop; for
+/// MDP1 (two rows) the columns are stops and the rows `s_i` and `s'_i`. Blue is inaccessible,
+/// green reconstruct, red move.
 ///
 /// # Errors
 /// [`RenderError`] if the image is empty or cannot be drawn.
@@ -209,8 +210,15 @@ fn draw_policy<DB: DrawingBackend>(
         .map_err(|e| e.to_string())?;
     ctx.configure_mesh()
         .disable_mesh()
-        .x_desc("j, last scan stop (green: reconstruct, red: move, blue: no such state)")
-        .y_desc(if rows.len() <= 2 { "s_i / s'_i" } else { "i (current stop)" })
+        .x_desc(if rows.len() <= 2 {
+            "stop i   (green: reconstruct, red: move, blue: no such state)"
+        } else {
+            "last scan stop j   (green: reconstruct, red: move, blue: no such state)"
+        })
+        .y_desc(if rows.len() <= 2 { "top: s_i, bottom: s'_i" } else { "current stop i" })
+        .y_labels(if rows.len() <= 2 { 3 } else { 10 })
+        .x_label_formatter(&|v| format!("{v:.0}"))
+        .y_label_formatter(&|v| format!("{v:.0}"))
         .draw()
         .map_err(|e| e.to_string())?;
     let cells = rows.iter().enumerate().flat_map(|(i, row)| {

@@ -18,42 +18,73 @@ pub(super) fn corner_policy_figure(id: &str) -> Result<Reproduction, ExperimentE
     let belief = fig5(dist_no)?;
     let mut rows = Vec::new();
     let mut images = Vec::new();
+    let mut notes =
+        vec!["the paper prints no numbers for this figure; compare the images".to_string()];
     for &memory in memories {
-        let m = CornerMdp {
-            setup,
-            step: 5f64.to_radians(),
-            memory,
-            reading: Reading::Conditional,
-            belief: belief.clone(),
-        };
-        let p = m.solve().map_err(model_err)?;
-        let name = if memory == Memory::Last { "MDP2" } else { "MDP1" };
-        rows.push(Row::new(
-            format!("{name}: scans if never seen"),
-            None,
-            p.scan_stops.len() as f64,
-        ));
-        rows.push(Row::new(
-            format!("{name}: expected time (s)"),
-            None,
-            expected(&p.stop_list, &setup, &belief).time,
-        ));
-        images.push((
-            format!("{id}-{}", name.to_lowercase()),
-            format!("{name} optimal policy, distribution {dist_no}, δ = 5°"),
-            p.image,
-        ));
+        for (reading, tag) in [(Reading::Conditional, "conditional"), (Reading::Literal, "printed")]
+        {
+            let m = CornerMdp {
+                setup,
+                step: 5f64.to_radians(),
+                memory,
+                reading,
+                belief: belief.clone(),
+            };
+            let p = m.solve().map_err(model_err)?;
+            let name = if memory == Memory::Last { "MDP2" } else { "MDP1" };
+            let label = format!("{name} [{tag} probabilities]");
+            let first = p.scan_stops.first().map_or(90.0, |&i| 5.0 * i as f64);
+            rows.push(Row::new(
+                format!("{label}: scans if never seen"),
+                None,
+                p.scan_stops.len() as f64,
+            ));
+            rows.push(Row::new(format!("{label}: first scan at (deg)"), None, first));
+            rows.push(Row::new(
+                format!("{label}: expected time (s)"),
+                None,
+                expected(&p.stop_list, &setup, &belief).time,
+            ));
+            if memory == Memory::None {
+                // The paper: MDP1 "moves until enough probability is accumulated and
+                // reconstructs at every step afterwards".
+                let k = p.scan_stops[0];
+                let gaps: Vec<usize> =
+                    (k..=p.stops).filter(|i| !p.scan_stops.contains(i)).collect();
+                let verdict = if p.scan_stops.len() == 1 {
+                    "it goes straight to the corner, unlike the paper's description (move, then reconstruct at every step)".to_string()
+                } else if gaps.is_empty() {
+                    "this matches the paper's description (move, then reconstruct at every step)"
+                        .to_string()
+                } else {
+                    format!(
+                        "close to the paper's description (move, then reconstruct at every step), except for stops {gaps:?}"
+                    )
+                };
+                notes.push(format!(
+                    "{label} scans at stops {:?} (5° each): {verdict}",
+                    p.scan_stops
+                ));
+            }
+            images.push((
+                format!("{id}-{}-{tag}", name.to_lowercase()),
+                format!(
+                    "{name} optimal policy, distribution {dist_no}, δ = 5°, {tag} probabilities"
+                ),
+                p.image,
+            ));
+        }
     }
     Ok(Reproduction {
         id: id.into(),
         model: vec![
-            format!(
-                "D = 10 m, v = 0.5 m/s, τ = 2 s, δ = 5°, distribution {dist_no} of Fig. 5, exact (conditional) transition probabilities"
-            ),
-            "image rows are the robot's stop i (downwards), columns the last scan's stop j".into(),
+            format!("D = 10 m, v = 0.5 m/s, τ = 2 s, δ = 5°, distribution {dist_no} of Fig. 5"),
+            "both readings of the transition probabilities: conditional (exact) and printed".into(),
+            "MDP2 image rows are the robot's stop i (downwards), columns the last scan's stop j"
+                .into(),
         ],
         rows,
-        notes: vec!["the paper prints no numbers for this figure; compare the images".into()],
+        notes,
         charts: vec![],
         images,
     })
