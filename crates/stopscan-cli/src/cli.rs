@@ -208,6 +208,9 @@ pub(crate) struct PolicyArgs {
     /// MDP1 (none) or MDP2 (last).
     #[arg(long, value_enum, default_value_t = MemoryArg::Last)]
     pub(crate) memory: MemoryArg,
+    /// The distribution the expected time is computed under (defaults to the belief).
+    #[arg(long)]
+    pub(crate) truth: Option<String>,
     /// Stop spacing on the circle, degrees.
     #[arg(long, default_value_t = 5.0)]
     pub(crate) step_deg: f64,

@@ -270,7 +270,11 @@ fn policy(a: &cli::PolicyArgs, g: &Global) -> anyhow::Result<()> {
             )
         }
     };
-    let e = expected(&p.stop_list, &setup, &belief);
+    let truth = match &a.truth {
+        Some(t) => AngleDistribution::parse(t)?,
+        None => belief.clone(),
+    };
+    let e = expected(&p.stop_list, &setup, &truth);
     let mut files = Vec::new();
     if let Some(dir) = picture_dir(g)? {
         let name = if memory == Memory::Last { "policy-mdp2" } else { "policy-mdp1" };
@@ -286,7 +290,7 @@ fn policy(a: &cli::PolicyArgs, g: &Global) -> anyhow::Result<()> {
             .collect();
     }
     let value = json!({
-        "memory": format!("{:?}", a.memory).to_lowercase(), "belief": belief, "step_deg": a.step_deg, "stops": p.stops, "states": p.states,
+        "memory": format!("{:?}", a.memory).to_lowercase(), "belief": belief, "truth": truth, "step_deg": a.step_deg, "stops": p.stops, "states": p.states,
         "reading": format!("{reading:?}").to_lowercase(), "model_value": p.model_value,
         "expected_time": e.time, "expected_scans": e.scans, "expected_distance": e.distance,
         "scan_stops": p.scan_stops, "scan_angles_deg": p.stop_list.angles().iter().map(|x| x.to_degrees()).collect::<Vec<_>>(),
@@ -420,17 +424,28 @@ pub(crate) fn reproduce(a: &cli::ReproduceArgs, g: &Global) -> anyhow::Result<()
     }
     let stdout = std::io::stdout();
     let mut w = stdout.lock();
+    if g.format == cli::Format::Json {
+        let all: Vec<ReproduceOut> = outs
+            .iter()
+            .map(|(r, files)| ReproduceOut {
+                r,
+                files: files.clone(),
+                seed: g.seed,
+                stopscan_version: stopscan::VERSION,
+            })
+            .collect();
+        // One object for one ID, an array for `all`.
+        let text = if a.id == "all" {
+            serde_json::to_string_pretty(&all)?
+        } else {
+            serde_json::to_string_pretty(&all[0])?
+        };
+        writeln!(w, "{text}")?;
+        return Ok(());
+    }
     for (r, files) in &outs {
         match g.format {
-            cli::Format::Json => {
-                let v = ReproduceOut {
-                    r,
-                    files: files.clone(),
-                    seed: g.seed,
-                    stopscan_version: stopscan::VERSION,
-                };
-                writeln!(w, "{}", serde_json::to_string_pretty(&v)?)?;
-            }
+            cli::Format::Json => unreachable!("handled above"),
             cli::Format::Table => {
                 writeln!(w, "== {} ==", r.id)?;
                 for m in &r.model {

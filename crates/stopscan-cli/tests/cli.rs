@@ -189,6 +189,8 @@ fn reproduce_every_id() {
         }
         assert!(dir.join(format!("{id}.json")).exists());
     }
+    let all = json(&["reproduce", "all", "--samples", "50"]);
+    assert_eq!(all.as_array().unwrap().len(), ids.len());
     let t1 = json(&["reproduce", "circle-table-1"]);
     for r in t1["rows"].as_array().unwrap() {
         assert!(f(r, "rel_diff").abs() < 1e-6, "{r}");

@@ -278,6 +278,23 @@ mod tests {
     }
 
     #[test]
+    fn strategy_state_survives_a_serde_round_trip_mid_run() {
+        let list = unirec(0.3, Route::Arc, LastStep::Capped).unwrap();
+        let mut a = list.into_strategy("unirec");
+        let _ = a.act(Feedback::Start);
+        let _ = a.act(Feedback::Arrived);
+        let saved = serde_json::to_string(&a).unwrap();
+        let mut b: StopListStrategy = serde_json::from_str(&saved).unwrap();
+        for _ in 0..12 {
+            let fb = Feedback::Scanned(CornerObservation::Hidden);
+            let (x, y) = (a.act(fb), b.act(fb));
+            assert_eq!(x, y);
+            assert_eq!(a.act(Feedback::Arrived), b.act(Feedback::Arrived));
+        }
+        assert_eq!(a, b);
+    }
+
+    #[test]
     fn seen_at_is_first_stop_at_or_above() {
         let s = StopList::from_nominal(&[0.5, 1.0], Route::Arc, LastStep::Capped).unwrap();
         assert_eq!(s.seen_at(0.1), 0);
