@@ -14,7 +14,7 @@ use stopscan::strategy::corner::{circle, unirec};
 use crate::cli::{BenchArgs, BenchTarget, Global, SolverArg};
 use crate::output::emit;
 
-fn median(mut v: Vec<f64>) -> f64 {
+pub(crate) fn median(mut v: Vec<f64>) -> f64 {
     v.sort_by(f64::total_cmp);
     let n = v.len();
     if n % 2 == 1 { v[n / 2] } else { 0.5 * (v[n / 2 - 1] + v[n / 2]) }
@@ -34,7 +34,11 @@ fn time<T>(repeat: usize, mut f: impl FnMut() -> T) -> f64 {
 }
 
 pub(crate) fn run(a: &BenchArgs, g: &Global) -> anyhow::Result<()> {
+    if a.target == BenchTarget::Visibility {
+        return crate::visibility::bench(a, g);
+    }
     let (name, n, secs, ops) = match a.target {
+        BenchTarget::Visibility => unreachable!("handled above"),
         BenchTarget::Mdp => {
             let general = a.solver == SolverArg::General;
             let n = a.n.unwrap_or(if general { 180 } else { 900 });

@@ -38,6 +38,8 @@ pub(crate) enum Format {
     Table,
     /// One JSON object.
     Json,
+    /// An SVG picture (`visibility` only).
+    Svg,
 }
 
 #[derive(Debug, Subcommand)]
@@ -47,6 +49,8 @@ pub(crate) enum Command {
         #[command(subcommand)]
         command: CornerCommand,
     },
+    /// The visibility region of a point in an environment, with labelled boundary pieces.
+    Visibility(VisibilityArgs),
     /// Reproduce a paper table or figure: the paper's value beside ours.
     Reproduce(ReproduceArgs),
     /// Throughput figures as JSON.
@@ -248,6 +252,19 @@ pub(crate) struct SimulateArgs {
 }
 
 #[derive(Debug, Args)]
+pub(crate) struct VisibilityArgs {
+    /// The environment file (the visibility benchmark format).
+    #[arg(long)]
+    pub(crate) env: PathBuf,
+    /// The viewpoint, "X,Y".
+    #[arg(long, allow_hyphen_values = true, conflicts_with = "queries")]
+    pub(crate) at: Option<String>,
+    /// Many viewpoints, one "x y" per line: one JSON object per line on output.
+    #[arg(long)]
+    pub(crate) queries: Option<PathBuf>,
+}
+
+#[derive(Debug, Args)]
 pub(crate) struct ReproduceArgs {
     /// corner-table-2, corner-table-3, corner-table-4, corner-fig-4, corner-fig-6,
     /// corner-fig-7, corner-fig-8, circle-table-1, circle-fig-7, or all.
@@ -265,6 +282,8 @@ pub(crate) enum BenchTarget {
     Circle,
     /// The exact worst-case ratio of a long stop list.
     Ratio,
+    /// Visibility queries on an environment (needs --env).
+    Visibility,
 }
 
 #[derive(Debug, Args)]
@@ -281,4 +300,10 @@ pub(crate) struct BenchArgs {
     /// MDP solver.
     #[arg(long, value_enum, default_value_t = SolverArg::Backward)]
     pub(crate) solver: SolverArg,
+    /// The environment for `bench visibility` (its own queries are used unless --queries).
+    #[arg(long)]
+    pub(crate) env: Option<PathBuf>,
+    /// Query points for `bench visibility`, one "x y" per line.
+    #[arg(long)]
+    pub(crate) queries: Option<PathBuf>,
 }

@@ -446,7 +446,7 @@ pub(crate) fn reproduce(a: &cli::ReproduceArgs, g: &Global) -> anyhow::Result<()
     for (r, files) in &outs {
         match g.format {
             cli::Format::Json => unreachable!("handled above"),
-            cli::Format::Table => {
+            cli::Format::Table | cli::Format::Svg => {
                 writeln!(w, "== {} ==", r.id)?;
                 for m in &r.model {
                     writeln!(w, "model: {m}")?;

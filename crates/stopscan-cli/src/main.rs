@@ -5,6 +5,7 @@ mod bench;
 mod cli;
 mod corner;
 mod output;
+mod visibility;
 
 use std::io::Write;
 use std::process::ExitCode;
@@ -45,9 +46,13 @@ fn main() -> ExitCode {
 
 fn run(args: &cli::Cli) -> anyhow::Result<()> {
     let g = &args.global;
+    if g.format == cli::Format::Svg && !matches!(args.command, Some(cli::Command::Visibility(_))) {
+        anyhow::bail!("--format svg is only available for `stopscan visibility`");
+    }
     match &args.command {
         None => corner::demo(g),
         Some(cli::Command::Corner { command }) => corner::run(command, g),
+        Some(cli::Command::Visibility(v)) => visibility::run(v, g),
         Some(cli::Command::Reproduce(r)) => corner::reproduce(r, g),
         Some(cli::Command::Bench(b)) => bench::run(b, g),
     }

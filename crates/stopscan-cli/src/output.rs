@@ -97,7 +97,7 @@ pub(crate) fn emit<T: Serialize>(
     let mut w = stdout.lock();
     match g.format {
         Format::Json => writeln!(w, "{}", serde_json::to_string_pretty(value)?)?,
-        Format::Table => table(&mut w)?,
+        Format::Table | Format::Svg => table(&mut w)?,
     }
     w.flush()?;
     if out_is_file && let Some(path) = &g.out {

@@ -28,6 +28,9 @@
 
 pub mod algorithm;
 pub mod experiment;
+pub mod geometry;
+pub mod io;
+pub mod kernel;
 pub mod offline;
 pub mod protocol;
 pub mod render;

@@ -2,3 +2,5 @@
 
 pub mod mdp;
 pub mod nelder_mead;
+pub mod triangulation;
+pub mod visibility;

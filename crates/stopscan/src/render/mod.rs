@@ -11,6 +11,9 @@ use serde::{Deserialize, Serialize};
 
 use crate::strategy::corner::mdp::Cell;
 
+mod scene;
+pub use scene::scene_svg;
+
 /// Why a picture could not be written.
 #[derive(Debug, thiserror::Error)]
 #[non_exhaustive]

@@ -1,0 +1,147 @@
+//! `stopscan visibility` and `stopscan bench visibility`.
+
+use std::io::Write;
+use std::time::Instant;
+
+use anyhow::{Context, bail};
+use serde_json::json;
+use stopscan::algorithm::visibility::{BoundaryPiece, Visibility, VisibilityRegion, expansion};
+use stopscan::kernel::Point;
+
+use crate::cli::{BenchArgs, Format, Global, VisibilityArgs};
+use crate::output::{Table, emit, num};
+
+fn parse_point(s: &str) -> anyhow::Result<Point> {
+    let v: Vec<&str> = s.split(',').map(str::trim).collect();
+    if let [x, y] = v.as_slice()
+        && let (Ok(x), Ok(y)) = (x.parse::<f64>(), y.parse::<f64>())
+        && x.is_finite()
+        && y.is_finite()
+    {
+        return Ok([x, y]);
+    }
+    bail!("--at expects X,Y with two finite numbers, got {s:?}")
+}
+
+fn region_json(r: &VisibilityRegion) -> serde_json::Value {
+    json!({
+        "viewpoint": r.viewpoint,
+        "area": r.area(),
+        "polygon": r.polygon,
+        "boundary": r.boundary,
+        "windows": r.windows().count(),
+    })
+}
+
+pub(crate) fn run(a: &VisibilityArgs, g: &Global) -> anyhow::Result<()> {
+    let env = stopscan::io::read_environment(&a.env)?;
+    let vis = Visibility::new(env.domain)?;
+    if let Some(file) = &a.queries {
+        let points = stopscan::io::read_points(file)?;
+        let stdout = std::io::stdout();
+        let mut w = stdout.lock();
+        let mut scratch = expansion::Scratch::default();
+        let mut region = VisibilityRegion::default();
+        for (i, &q) in points.iter().enumerate() {
+            vis.query_into(q, &mut scratch, &mut region).with_context(|| {
+                format!("{}:{}: query ({}, {})", file.display(), i + 1, q[0], q[1])
+            })?;
+            writeln!(w, "{}", serde_json::to_string(&region_json(&region))?)?;
+        }
+        return Ok(());
+    }
+    let Some(at) = &a.at else {
+        bail!("give the viewpoint with --at X,Y or many with --queries FILE")
+    };
+    let q = parse_point(at)?;
+    let r = vis.query(q)?;
+    if g.format == Format::Svg {
+        let svg = stopscan::render::scene_svg(vis.domain(), std::slice::from_ref(&r));
+        match &g.out {
+            Some(path) => std::fs::write(path, svg)
+                .with_context(|| format!("cannot write {}", path.display()))?,
+            None => std::io::stdout().lock().write_all(svg.as_bytes())?,
+        }
+        return Ok(());
+    }
+    let value = region_json(&r);
+    emit(g, &value, true, |w| {
+        writeln!(
+            w,
+            "viewpoint ({}, {}): area {:.6}, {} vertices, {} windows",
+            q[0],
+            q[1],
+            r.area(),
+            r.polygon.len(),
+            r.windows().count()
+        )?;
+        let mut t = Table::new(&["piece", "kind", "from", "to"]);
+        for (i, b) in r.boundary.iter().enumerate() {
+            let kind = match b {
+                BoundaryPiece::Edge { edge, .. } => format!("edge r{}e{}", edge.ring, edge.index),
+                BoundaryPiece::Partial { edge, .. } => {
+                    format!("partial r{}e{}", edge.ring, edge.index)
+                }
+                BoundaryPiece::Window { .. } => "window".into(),
+            };
+            let (f, to) = b.ends();
+            t.row(vec![
+                (i + 1).to_string(),
+                kind,
+                format!("({}, {})", num(Some(f[0]), 4), num(Some(f[1]), 4)),
+                format!("({}, {})", num(Some(to[0]), 4), num(Some(to[1]), 4)),
+            ]);
+        }
+        t.write(w)
+    })
+}
+
+pub(crate) fn bench(a: &BenchArgs, g: &Global) -> anyhow::Result<()> {
+    let Some(path) = &a.env else { bail!("bench visibility needs --env FILE") };
+    let env = stopscan::io::read_environment(path)?;
+    let queries = match &a.queries {
+        Some(f) => stopscan::io::read_points(f)?,
+        None => env.queries.clone(),
+    };
+    if queries.is_empty() {
+        bail!("{} has no QUERIES section; give --queries FILE", path.display());
+    }
+    let vertices = env.domain.vertex_count();
+    let mut pre = Vec::new();
+    let mut vis = None;
+    for _ in 0..a.repeat.clamp(1, 5) {
+        let t = Instant::now();
+        let v = Visibility::new(env.domain.clone())?;
+        pre.push(t.elapsed().as_secs_f64());
+        vis = Some(v);
+    }
+    let vis = vis.expect("at least one build");
+    let mut scratch = expansion::Scratch::default();
+    let mut region = VisibilityRegion::default();
+    let mut total_vertices = 0usize;
+    for &q in &queries {
+        vis.query_into(q, &mut scratch, &mut region)?;
+        total_vertices += region.polygon.len();
+    }
+    let runs: Vec<f64> = (0..a.repeat.max(1))
+        .map(|_| {
+            let t = Instant::now();
+            for &q in &queries {
+                let _ = vis.query_into(q, &mut scratch, &mut region);
+                std::hint::black_box(&region);
+            }
+            t.elapsed().as_secs_f64()
+        })
+        .collect();
+    let secs = crate::bench::median(runs);
+    let value = json!({
+        "name": "visibility-triangular-expansion",
+        "vertices": vertices,
+        "queries": queries.len(),
+        "preprocess_seconds": crate::bench::median(pre),
+        "queries_per_second": queries.len() as f64 / secs,
+        "mean_output_vertices": total_vertices as f64 / queries.len() as f64,
+        "repeat": a.repeat,
+    });
+    emit(g, &value, true, |w| writeln!(w, "{}", serde_json::to_string(&value).unwrap_or_default()))
+}

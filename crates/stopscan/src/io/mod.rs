@@ -1,0 +1,108 @@
+//! Environment formats. Loaders check everything once, report the file, the place and the
+//! problem, and never panic.
+
+pub mod bench_format;
+
+use crate::geometry::InvalidEnvironment;
+
+/// Why an environment file could not be loaded.
+#[derive(Debug, thiserror::Error)]
+#[non_exhaustive]
+pub enum LoadError {
+    /// The file could not be read.
+    #[error("{file}: {source}")]
+    Io {
+        /// The file.
+        file: String,
+        /// The system error.
+        source: std::io::Error,
+    },
+    /// The text is malformed at a line (1-based).
+    #[error("{file}:{line}: {reason}")]
+    Syntax {
+        /// The file.
+        file: String,
+        /// The line.
+        line: usize,
+        /// What is wrong.
+        reason: String,
+    },
+    /// The text parses but the environment is invalid.
+    #[error("{file}: {source}")]
+    Invalid {
+        /// The file.
+        file: String,
+        /// The validation error (names the ring and vertex).
+        source: InvalidEnvironment,
+    },
+}
+
+/// An environment and the query points it may carry.
+#[derive(Debug, Clone)]
+pub struct Environment {
+    /// The validated domain.
+    pub domain: crate::geometry::Domain,
+    /// Query points carried by the file (the benchmark format has them).
+    pub queries: Vec<crate::kernel::Point>,
+}
+
+/// Reads an environment file, choosing the format by its content.
+///
+/// Supported today: the visibility benchmark format (`OUTER m … HOLES h … [QUERIES q …]`).
+///
+/// # Errors
+/// [`LoadError`] naming the file, the place and the problem.
+pub fn read_environment(path: &std::path::Path) -> Result<Environment, LoadError> {
+    let text = std::fs::read_to_string(path)
+        .map_err(|source| LoadError::Io { file: path.display().to_string(), source })?;
+    let first =
+        text.lines().map(str::trim).find(|l| !l.is_empty() && !l.starts_with('#')).unwrap_or("");
+    if first.starts_with("OUTER") {
+        let e = bench_format::parse(&text, &path.display().to_string())?;
+        return Ok(Environment { domain: e.domain, queries: e.queries });
+    }
+    Err(LoadError::Syntax {
+        file: path.display().to_string(),
+        line: 1,
+        reason: "unrecognised environment format (supported: the visibility benchmark format, starting with 'OUTER')".into(),
+    })
+}
+
+/// Reads query points, one `x y` (or `x,y`) per line; `#` starts a comment.
+///
+/// # Errors
+/// [`LoadError`] naming the file and line.
+pub fn read_points(path: &std::path::Path) -> Result<Vec<crate::kernel::Point>, LoadError> {
+    let file = path.display().to_string();
+    let text = std::fs::read_to_string(path)
+        .map_err(|source| LoadError::Io { file: file.clone(), source })?;
+    let mut out = Vec::new();
+    for (i, line) in text.lines().enumerate() {
+        let line = line.split('#').next().unwrap_or("").trim();
+        if line.is_empty() {
+            continue;
+        }
+        let v: Vec<&str> =
+            line.split(|c: char| c == ',' || c.is_whitespace()).filter(|s| !s.is_empty()).collect();
+        match v.as_slice() {
+            [x, y] => match (x.parse::<f64>(), y.parse::<f64>()) {
+                (Ok(x), Ok(y)) if x.is_finite() && y.is_finite() => out.push([x, y]),
+                _ => {
+                    return Err(LoadError::Syntax {
+                        file,
+                        line: i + 1,
+                        reason: format!("expected two finite numbers, got {line:?}"),
+                    });
+                }
+            },
+            _ => {
+                return Err(LoadError::Syntax {
+                    file,
+                    line: i + 1,
+                    reason: format!("expected 'x y', got {line:?}"),
+                });
+            }
+        }
+    }
+    Ok(out)
+}

@@ -1,0 +1,216 @@
+//! Visibility regions against independent oracles: the angular sweep, brute-force point
+//! visibility, and the shared benchmark inputs when `../shared` is present.
+
+use std::path::PathBuf;
+
+use proptest::prelude::*;
+use rand::{RngExt, SeedableRng};
+use stopscan::algorithm::visibility::sweep::{is_visible, visible_area};
+use stopscan::algorithm::visibility::{BoundaryPiece, Visibility};
+use stopscan::geometry::{Domain, Location};
+use stopscan::kernel::{Point, orient_sign};
+
+/// A seeded pillar forest: a rectangle with disjoint random convex pillars.
+fn forest(seed: u64, pillars: usize) -> Domain {
+    let mut rng = rand_chacha::ChaCha8Rng::seed_from_u64(seed);
+    let (w, h) = (20.0, 14.0);
+    let mut holes: Vec<Vec<Point>> = Vec::new();
+    let mut boxes: Vec<[f64; 4]> = Vec::new();
+    for _ in 0..pillars * 20 {
+        if holes.len() == pillars {
+            break;
+        }
+        let (cx, cy) = (rng.random_range(1.5..w - 1.5), rng.random_range(1.5..h - 1.5));
+        let r = rng.random_range(0.3..1.2);
+        let b = [cx - r, cy - r, cx + r, cy + r];
+        if boxes.iter().any(|o| {
+            b[0] < o[2] + 0.2 && o[0] < b[2] + 0.2 && b[1] < o[3] + 0.2 && o[1] < b[3] + 0.2
+        }) {
+            continue;
+        }
+        let k: i32 = rng.random_range(3..7);
+        let start: f64 = rng.random_range(0.0..1.0);
+        let ring: Vec<Point> = (0..k)
+            .map(|i| {
+                let a = std::f64::consts::TAU * (start + f64::from(i)) / f64::from(k);
+                [cx + r * a.cos(), cy + r * a.sin()]
+            })
+            .collect();
+        boxes.push(b);
+        holes.push(ring);
+    }
+    Domain::new(vec![[0.0, 0.0], [w, 0.0], [w, h], [0.0, h]], holes).unwrap()
+}
+
+fn free_point(d: &Domain, rng: &mut impl rand::Rng) -> Point {
+    let [lo, hi] = d.bounds();
+    loop {
+        let p = [rng.random_range(lo[0]..hi[0]), rng.random_range(lo[1]..hi[1])];
+        if d.locate(p) == Location::Interior {
+            return p;
+        }
+    }
+}
+
+/// Checks every invariant of one region.
+fn check_region(v: &Visibility, q: Point, rng: &mut impl rand::Rng, samples: usize) {
+    let d = v.domain();
+    let r = v.query(q).unwrap();
+    let area = r.area();
+    assert!(area > 0.0 && area <= d.area() * (1.0 + 1e-12), "area {area}");
+    // Star-shaped from q: every edge piece turns counter-clockwise around q (windows are
+    // radial, checked below).
+    for piece in r.boundary.iter().filter(|b| !matches!(b, BoundaryPiece::Window { .. })) {
+        let (a, b) = piece.ends();
+        if a != q && b != q {
+            assert!(orient_sign(q, a, b) >= 0, "piece {piece:?} runs clockwise");
+        }
+    }
+    // Pieces chain end to start.
+    for i in 0..r.boundary.len() {
+        let (_, end) = r.boundary[i].ends();
+        let (start, _) = r.boundary[(i + 1) % r.boundary.len()].ends();
+        assert_eq!(end, start);
+    }
+    // Windows lie on a ray from q through their reflex vertex, reflex vertex nearer.
+    for w in r.windows() {
+        if let BoundaryPiece::Window { reflex, far, .. } = *w {
+            let (dr, df) =
+                ((reflex[0] - q[0]).hypot(reflex[1] - q[1]), (far[0] - q[0]).hypot(far[1] - q[1]));
+            assert!(dr <= df);
+            let cross = (reflex[0] - q[0]) * (far[1] - q[1]) - (far[0] - q[0]) * (reflex[1] - q[1]);
+            assert!(cross.abs() <= 1e-9 * dr * df.max(1.0), "window off its ray: {w:?}");
+        }
+    }
+    // Sampled points: inside the polygon exactly when visible by brute force.
+    for _ in 0..samples {
+        let p = free_point(d, rng);
+        let inside =
+            stopscan::kernel::ring_side(&r.polygon, p) != stopscan::kernel::RingSide::Outside;
+        assert_eq!(inside, is_visible(d, q, p), "q = {q:?}, p = {p:?}");
+    }
+}
+
+#[test]
+fn expansion_agrees_with_brute_force_on_random_forests() {
+    let mut rng = rand_chacha::ChaCha8Rng::seed_from_u64(11);
+    for seed in 0..20 {
+        let d = forest(seed, 3 + seed as usize % 12);
+        let v = Visibility::new(d.clone()).unwrap();
+        for _ in 0..5 {
+            let q = free_point(&d, &mut rng);
+            check_region(&v, q, &mut rng, 60);
+            let (a, b) = (v.query(q).unwrap().area(), visible_area(&d, q));
+            assert!((a - b).abs() <= 1e-9 * b, "seed {seed} q {q:?}: expansion {a} vs sweep {b}");
+        }
+    }
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig { cases: 48, rng_seed: proptest::test_runner::RngSeed::Fixed(3), ..ProptestConfig::default() })]
+
+    #[test]
+    fn expansion_equals_sweep(seed in 0u64..10_000, pillars in 1usize..20, qs in any::<u64>()) {
+        let d = forest(seed, pillars);
+        let v = Visibility::new(d.clone()).unwrap();
+        let mut rng = rand_chacha::ChaCha8Rng::seed_from_u64(qs);
+        let q = free_point(&d, &mut rng);
+        let (a, b) = (v.query(q).unwrap().area(), visible_area(&d, q));
+        prop_assert!((a - b).abs() <= 1e-9 * b, "{a} vs {b}");
+    }
+}
+
+fn shared(name: &str) -> Option<PathBuf> {
+    let p = PathBuf::from(env!("CARGO_MANIFEST_DIR"))
+        .join("../../../shared/bench/visibility")
+        .join(name);
+    p.exists().then_some(p)
+}
+
+#[test]
+fn shared_benchmark_agrees_with_the_sweep() {
+    let Some(path) = shared("env_100.txt") else {
+        eprintln!("skipped: ../shared is absent");
+        return;
+    };
+    let env = stopscan::io::bench_format::read(&path).unwrap();
+    let v = Visibility::new(env.domain.clone()).unwrap();
+    for &q in &env.queries {
+        let (a, b) = (v.query(q).unwrap().area(), visible_area(&env.domain, q));
+        assert!((a - b).abs() <= 1e-9 * b, "q {q:?}: {a} vs {b}");
+    }
+}
+
+#[test]
+fn collinear_chains_and_rays_through_vertices() {
+    // A comb whose teeth line up: rays from the viewpoint pass through several vertices.
+    let outer =
+        vec![[0.0, 0.0], [1.0, 0.0], [2.0, 0.0], [3.0, 0.0], [6.0, 0.0], [6.0, 4.0], [0.0, 4.0]];
+    let holes = vec![
+        vec![[1.0, 1.0], [1.0, 2.0], [2.0, 2.0], [2.0, 1.0]],
+        vec![[3.0, 1.0], [3.0, 2.0], [4.0, 2.0], [4.0, 1.0]],
+    ];
+    let d = Domain::new(outer, holes).unwrap();
+    let v = Visibility::new(d.clone()).unwrap();
+    let mut rng = rand_chacha::ChaCha8Rng::seed_from_u64(5);
+    // On the line y = 1 through four hole vertices, and y = 2 likewise.
+    for q in [[0.5, 1.0], [0.5, 2.0], [5.0, 1.0], [0.5, 0.5], [5.5, 3.0]] {
+        check_region(&v, q, &mut rng, 200);
+        let (a, b) = (v.query(q).unwrap().area(), visible_area(&d, q));
+        assert!((a - b).abs() <= 1e-9 * b, "q {q:?}: {a} vs {b}");
+    }
+}
+
+#[test]
+fn queries_on_vertices_and_edges() {
+    let d = forest(7, 6);
+    let v = Visibility::new(d.clone()).unwrap();
+    let mut rng = rand_chacha::ChaCha8Rng::seed_from_u64(9);
+    let mut qs: Vec<Point> = d.rings().iter().flatten().copied().collect();
+    for ring in d.rings() {
+        for i in 0..ring.len() {
+            let (a, b) = (ring[i], ring[(i + 1) % ring.len()]);
+            qs.push([0.5 * (a[0] + b[0]), 0.5 * (a[1] + b[1])]);
+        }
+    }
+    for q in qs {
+        if d.locate(q) == Location::Outside {
+            assert!(v.query(q).is_err(), "the mesh and the exact locator disagree at {q:?}");
+            continue;
+        }
+        // A float midpoint of a slanted edge is usually not exactly on it; the exact locator
+        // decides which convention applies.
+        if d.locate(q) == Location::Boundary {
+            assert_eq!(
+                v.query(q).unwrap().polygon[0],
+                q,
+                "a boundary query starts its polygon at itself"
+            );
+        }
+        check_region(&v, q, &mut rng, 40);
+    }
+}
+
+#[test]
+fn orthogonal_polygon_queries_on_vertices() {
+    // CGAL's issue 6995: an orthogonal polygon, queries on its vertices.
+    let outer = vec![[0.0, 0.0], [4.0, 0.0], [4.0, 2.0], [2.0, 2.0], [2.0, 4.0], [0.0, 4.0]];
+    let holes = vec![vec![[0.5, 0.5], [0.5, 1.0], [1.0, 1.0], [1.0, 0.5]]];
+    let d = Domain::new(outer, holes).unwrap();
+    let v = Visibility::new(d.clone()).unwrap();
+    let mut rng = rand_chacha::ChaCha8Rng::seed_from_u64(1);
+    for &q in d.rings().iter().flatten() {
+        check_region(&v, q, &mut rng, 300);
+    }
+}
+
+#[test]
+fn outside_is_an_error() {
+    let d = forest(1, 3);
+    let v = Visibility::new(d.clone()).unwrap();
+    assert!(v.query([-1.0, 5.0]).is_err());
+    assert!(v.query([f64::NAN, 5.0]).is_err());
+    let c = d.holes()[0].iter().fold([0.0, 0.0], |s, p| [s[0] + p[0], s[1] + p[1]]);
+    let n = d.holes()[0].len() as f64;
+    assert!(v.query([c[0] / n, c[1] / n]).is_err());
+}
