@@ -51,6 +51,11 @@ pub(crate) enum Command {
     },
     /// The visibility region of a point in an environment, with labelled boundary pieces.
     Visibility(VisibilityArgs),
+    /// Environment files: convert ROS maps, .pol, WKT and the benchmark format to GeoJSON.
+    Map {
+        #[command(subcommand)]
+        command: MapCommand,
+    },
     /// Reproduce a paper table or figure: the paper's value beside ours.
     Reproduce(ReproduceArgs),
     /// Throughput figures as JSON.
@@ -249,6 +254,28 @@ pub(crate) struct SimulateArgs {
     pub(crate) setup: SetupArgs,
     #[command(flatten)]
     pub(crate) readings: Readings,
+}
+
+#[derive(Debug, Subcommand)]
+pub(crate) enum MapCommand {
+    /// Read any supported environment and write it as GeoJSON.
+    Import(ImportArgs),
+}
+
+#[derive(Debug, Args)]
+pub(crate) struct ImportArgs {
+    /// The input: ROS map .yaml, GeoJSON, WKT, .pol, or the visibility benchmark format.
+    pub(crate) file: PathBuf,
+    /// The GeoJSON to write.
+    #[arg(short = 'o', long = "output")]
+    pub(crate) output: PathBuf,
+    /// ROS maps: the start "X,Y" in metres; the free region containing it is kept (default:
+    /// the largest free region).
+    #[arg(long, allow_hyphen_values = true)]
+    pub(crate) start: Option<String>,
+    /// ROS maps: enclosed obstacle specks below this area (square metres) are dropped.
+    #[arg(long, default_value_t = 0.05)]
+    pub(crate) min_speck_area: f64,
 }
 
 #[derive(Debug, Args)]

@@ -53,6 +53,7 @@ fn run(args: &cli::Cli) -> anyhow::Result<()> {
         None => corner::demo(g),
         Some(cli::Command::Corner { command }) => corner::run(command, g),
         Some(cli::Command::Visibility(v)) => visibility::run(v, g),
+        Some(cli::Command::Map { command: cli::MapCommand::Import(a) }) => visibility::import(a, g),
         Some(cli::Command::Reproduce(r)) => corner::reproduce(r, g),
         Some(cli::Command::Bench(b)) => bench::run(b, g),
     }

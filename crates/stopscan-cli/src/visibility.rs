@@ -8,10 +8,10 @@ use serde_json::json;
 use stopscan::algorithm::visibility::{BoundaryPiece, Visibility, VisibilityRegion, expansion};
 use stopscan::kernel::Point;
 
-use crate::cli::{BenchArgs, Format, Global, VisibilityArgs};
+use crate::cli::{BenchArgs, Format, Global, ImportArgs, VisibilityArgs};
 use crate::output::{Table, emit, num};
 
-fn parse_point(s: &str) -> anyhow::Result<Point> {
+pub(crate) fn parse_point(s: &str) -> anyhow::Result<Point> {
     let v: Vec<&str> = s.split(',').map(str::trim).collect();
     if let [x, y] = v.as_slice()
         && let (Ok(x), Ok(y)) = (x.parse::<f64>(), y.parse::<f64>())
@@ -20,7 +20,7 @@ fn parse_point(s: &str) -> anyhow::Result<Point> {
     {
         return Ok([x, y]);
     }
-    bail!("--at expects X,Y with two finite numbers, got {s:?}")
+    bail!("expected X,Y with two finite numbers, got {s:?}")
 }
 
 fn region_json(r: &VisibilityRegion) -> serde_json::Value {
@@ -144,4 +144,42 @@ pub(crate) fn bench(a: &BenchArgs, g: &Global) -> anyhow::Result<()> {
         "repeat": a.repeat,
     });
     emit(g, &value, true, |w| writeln!(w, "{}", serde_json::to_string(&value).unwrap_or_default()))
+}
+
+pub(crate) fn import(a: &ImportArgs, g: &Global) -> anyhow::Result<()> {
+    let start = a.start.as_deref().map(parse_point).transpose()?;
+    if !(a.min_speck_area.is_finite() && a.min_speck_area >= 0.0) {
+        bail!("--min-speck-area must be a non-negative number");
+    }
+    let is_map = a
+        .file
+        .extension()
+        .and_then(|e| e.to_str())
+        .is_some_and(|e| e.eq_ignore_ascii_case("yaml") || e.eq_ignore_ascii_case("yml"));
+    let env = if is_map {
+        let opts = stopscan::io::ros_map::RosMapOptions { start, min_speck_area: a.min_speck_area };
+        stopscan::io::ros_map::read(&a.file, &opts)?
+    } else {
+        stopscan::io::read_environment(&a.file)?
+    };
+    let start = start.or_else(|| env.queries.first().copied());
+    let geo = stopscan::io::text_formats::to_geojson(&env.domain, start);
+    crate::output::write_json_atomic(&a.output, &geo)?;
+    let d = &env.domain;
+    let value = json!({
+        "input": a.file, "output": a.output, "vertices": d.vertex_count(), "holes": d.holes().len(),
+        "reflex_vertices": d.reflex_vertices().len(), "free_area": d.area(),
+    });
+    emit(g, &value, false, |w| {
+        writeln!(
+            w,
+            "{} -> {}: {} vertices, {} holes, {} reflex, free area {:.3}",
+            a.file.display(),
+            a.output.display(),
+            d.vertex_count(),
+            d.holes().len(),
+            d.reflex_vertices().len(),
+            d.area()
+        )
+    })
 }

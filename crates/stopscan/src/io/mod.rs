@@ -2,6 +2,8 @@
 //! problem, and never panic.
 
 pub mod bench_format;
+pub mod ros_map;
+pub mod text_formats;
 
 use crate::geometry::InvalidEnvironment;
 
@@ -48,7 +50,8 @@ pub struct Environment {
 
 /// Reads an environment file, choosing the format by its content.
 ///
-/// Supported today: the visibility benchmark format (`OUTER m … HOLES h … [QUERIES q …]`).
+/// GeoJSON, WKT, `.pol` ([`text_formats`]), the visibility benchmark format
+/// ([`bench_format`]) and ROS `map_server` YAML ([`ros_map`]).
 ///
 /// # Errors
 /// [`LoadError`] naming the file, the place and the problem.
@@ -57,14 +60,30 @@ pub fn read_environment(path: &std::path::Path) -> Result<Environment, LoadError
         .map_err(|source| LoadError::Io { file: path.display().to_string(), source })?;
     let first =
         text.lines().map(str::trim).find(|l| !l.is_empty() && !l.starts_with('#')).unwrap_or("");
+    let file = path.display().to_string();
+    let ext = path.extension().and_then(|e| e.to_str()).map(str::to_ascii_lowercase);
+    if matches!(ext.as_deref(), Some("yaml" | "yml")) {
+        return ros_map::read(path, &ros_map::RosMapOptions::default());
+    }
     if first.starts_with("OUTER") {
-        let e = bench_format::parse(&text, &path.display().to_string())?;
+        let e = bench_format::parse(&text, &file)?;
         return Ok(Environment { domain: e.domain, queries: e.queries });
     }
+    if first.starts_with('{') || matches!(ext.as_deref(), Some("geojson" | "json")) {
+        return text_formats::parse_geojson(&text, &file);
+    }
+    if first.len() >= 7 && first[..7].eq_ignore_ascii_case("POLYGON") {
+        return text_formats::parse_wkt(&text, &file);
+    }
+    if ext.as_deref() == Some("pol")
+        || first.split_whitespace().next().is_some_and(|t| t.parse::<usize>().is_ok())
+    {
+        return text_formats::parse_pol(&text, &file);
+    }
     Err(LoadError::Syntax {
-        file: path.display().to_string(),
+        file,
         line: 1,
-        reason: "unrecognised environment format (supported: the visibility benchmark format, starting with 'OUTER')".into(),
+        reason: "unrecognised environment format (supported: GeoJSON, WKT POLYGON, .pol, the visibility benchmark format, ROS map .yaml)".into(),
     })
 }
 
