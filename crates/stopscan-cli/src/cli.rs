@@ -289,6 +289,12 @@ pub(crate) struct VisibilityArgs {
     /// Many viewpoints, one "x y" per line: one JSON object per line on output.
     #[arg(long)]
     pub(crate) queries: Option<PathBuf>,
+    /// Sensor range R (metres): the region within R, with exact arcs.
+    #[arg(long)]
+    pub(crate) range: Option<f64>,
+    /// Largest distance between an arc and its chords in the output polygon (default R/10⁴).
+    #[arg(long)]
+    pub(crate) arc_tolerance: Option<f64>,
 }
 
 #[derive(Debug, Args)]
@@ -333,4 +339,7 @@ pub(crate) struct BenchArgs {
     /// Query points for `bench visibility`, one "x y" per line.
     #[arg(long)]
     pub(crate) queries: Option<PathBuf>,
+    /// Sensor range for `bench visibility` (range-limited queries).
+    #[arg(long)]
+    pub(crate) range: Option<f64>,
 }

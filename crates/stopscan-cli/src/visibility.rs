@@ -5,6 +5,7 @@ use std::time::Instant;
 
 use anyhow::{Context, bail};
 use serde_json::json;
+use stopscan::algorithm::visibility::range::{RangeRegion, clip};
 use stopscan::algorithm::visibility::{BoundaryPiece, Visibility, VisibilityRegion, expansion};
 use stopscan::kernel::Point;
 
@@ -23,6 +24,30 @@ pub(crate) fn parse_point(s: &str) -> anyhow::Result<Point> {
     bail!("expected X,Y with two finite numbers, got {s:?}")
 }
 
+fn range_json(r: &RangeRegion, tolerance: f64) -> serde_json::Value {
+    json!({
+        "viewpoint": r.viewpoint,
+        "range": r.radius,
+        "area": r.area(),
+        "polygon": r.to_polygon(tolerance),
+        "arc_tolerance": tolerance,
+        "boundary": r.boundary,
+        "arcs": r.arcs().count(),
+    })
+}
+
+fn check_range(range: Option<f64>, tol: Option<f64>) -> anyhow::Result<Option<(f64, f64)>> {
+    let Some(r) = range else { return Ok(None) };
+    if !(r.is_finite() && r > 0.0) {
+        bail!("--range must be a finite positive distance, got {r}");
+    }
+    let t = tol.unwrap_or(r * 1e-4);
+    if !(t.is_finite() && t > 0.0) {
+        bail!("--arc-tolerance must be a finite positive distance, got {t}");
+    }
+    Ok(Some((r, t)))
+}
+
 fn region_json(r: &VisibilityRegion) -> serde_json::Value {
     json!({
         "viewpoint": r.viewpoint,
@@ -34,6 +59,7 @@ fn region_json(r: &VisibilityRegion) -> serde_json::Value {
 }
 
 pub(crate) fn run(a: &VisibilityArgs, g: &Global) -> anyhow::Result<()> {
+    let range = check_range(a.range, a.arc_tolerance)?;
     let env = stopscan::io::read_environment(&a.env)?;
     let vis = Visibility::new(env.domain)?;
     if let Some(file) = &a.queries {
@@ -46,7 +72,11 @@ pub(crate) fn run(a: &VisibilityArgs, g: &Global) -> anyhow::Result<()> {
             vis.query_into(q, &mut scratch, &mut region).with_context(|| {
                 format!("{}:{}: query ({}, {})", file.display(), i + 1, q[0], q[1])
             })?;
-            writeln!(w, "{}", serde_json::to_string(&region_json(&region))?)?;
+            let v = match range {
+                Some((r, t)) => range_json(&clip(&region, r), t),
+                None => region_json(&region),
+            };
+            writeln!(w, "{}", serde_json::to_string(&v)?)?;
         }
         return Ok(());
     }
@@ -55,6 +85,32 @@ pub(crate) fn run(a: &VisibilityArgs, g: &Global) -> anyhow::Result<()> {
     };
     let q = parse_point(at)?;
     let r = vis.query(q)?;
+    if let Some((radius, tol)) = range {
+        let rr = clip(&r, radius);
+        if g.format == Format::Svg {
+            let approx =
+                VisibilityRegion { viewpoint: q, polygon: rr.to_polygon(tol), boundary: vec![] };
+            let svg = stopscan::render::scene_svg(vis.domain(), std::slice::from_ref(&approx));
+            match &g.out {
+                Some(path) => std::fs::write(path, svg)
+                    .with_context(|| format!("cannot write {}", path.display()))?,
+                None => std::io::stdout().lock().write_all(svg.as_bytes())?,
+            }
+            return Ok(());
+        }
+        let value = range_json(&rr, tol);
+        return emit(g, &value, true, |w| {
+            writeln!(
+                w,
+                "viewpoint ({}, {}) within {radius}: area {:.6} (exact), {} pieces, {} arcs",
+                q[0],
+                q[1],
+                rr.area(),
+                rr.boundary.len(),
+                rr.arcs().count()
+            )
+        });
+    }
     if g.format == Format::Svg {
         let svg = stopscan::render::scene_svg(vis.domain(), std::slice::from_ref(&r));
         match &g.out {
@@ -118,16 +174,23 @@ pub(crate) fn bench(a: &BenchArgs, g: &Global) -> anyhow::Result<()> {
     let vis = vis.expect("at least one build");
     let mut scratch = expansion::Scratch::default();
     let mut region = VisibilityRegion::default();
+    let range = check_range(a.range, None)?.map(|r| r.0);
     let mut total_vertices = 0usize;
     for &q in &queries {
         vis.query_into(q, &mut scratch, &mut region)?;
-        total_vertices += region.polygon.len();
+        total_vertices += match range {
+            Some(r) => clip(&region, r).boundary.len(),
+            None => region.polygon.len(),
+        };
     }
     let runs: Vec<f64> = (0..a.repeat.max(1))
         .map(|_| {
             let t = Instant::now();
             for &q in &queries {
                 let _ = vis.query_into(q, &mut scratch, &mut region);
+                if let Some(r) = range {
+                    std::hint::black_box(clip(&region, r));
+                }
                 std::hint::black_box(&region);
             }
             t.elapsed().as_secs_f64()
@@ -135,7 +198,8 @@ pub(crate) fn bench(a: &BenchArgs, g: &Global) -> anyhow::Result<()> {
         .collect();
     let secs = crate::bench::median(runs);
     let value = json!({
-        "name": "visibility-triangular-expansion",
+        "name": if range.is_some() { "visibility-range-limited" } else { "visibility-triangular-expansion" },
+        "range": range,
         "vertices": vertices,
         "queries": queries.len(),
         "preprocess_seconds": crate::bench::median(pre),

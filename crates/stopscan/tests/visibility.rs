@@ -214,3 +214,47 @@ fn outside_is_an_error() {
     let n = d.holes()[0].len() as f64;
     assert!(v.query([c[0] / n, c[1] / n]).is_err());
 }
+
+#[test]
+fn range_limited_regions_match_the_sweep_and_brute_force() {
+    use stopscan::algorithm::visibility::sweep::visible_area_within;
+    let mut rng = rand_chacha::ChaCha8Rng::seed_from_u64(21);
+    for seed in 0..15 {
+        let d = forest(100 + seed, 2 + seed as usize % 10);
+        let v = Visibility::new(d.clone()).unwrap();
+        for _ in 0..4 {
+            let q = free_point(&d, &mut rng);
+            let r = rng.random_range(0.2..12.0);
+            let region = v.query_range(q, r).unwrap();
+            let (a, b) = (region.area(), visible_area_within(&d, q, r));
+            assert!((a - b).abs() <= 1e-9 * b, "seed {seed} q {q:?} R {r}: {a} vs {b}");
+            assert!(a <= std::f64::consts::PI * r * r * (1.0 + 1e-12));
+            assert!(a <= v.query(q).unwrap().area() * (1.0 + 1e-12));
+            // The polygonal approximation is within its tolerance: points well inside the disk
+            // are classified like the exact region.
+            let tol = 1e-6 * r;
+            let poly = region.to_polygon(tol);
+            let approx = stopscan::algorithm::visibility::polygon_area_of(q, &poly);
+            assert!(
+                b - approx >= -1e-9 * b
+                    && b - approx <= tol * 2.0 * std::f64::consts::PI * r + 1e-9 * b
+            );
+            for _ in 0..40 {
+                let p = free_point(&d, &mut rng);
+                let dist = (p[0] - q[0]).hypot(p[1] - q[1]);
+                if (dist - r).abs() < 1e-3 * r {
+                    continue;
+                }
+                let inside =
+                    stopscan::kernel::ring_side(&poly, p) != stopscan::kernel::RingSide::Outside;
+                assert_eq!(inside, dist < r && is_visible(&d, q, p), "q {q:?} p {p:?} R {r}");
+            }
+        }
+    }
+    // Nothing within range: the whole disk.
+    let d = forest(3, 2);
+    let v = Visibility::new(d.clone()).unwrap();
+    let q = free_point(&d, &mut rng);
+    let r = v.query_range(q, 1e-3).unwrap();
+    assert!((r.area() - std::f64::consts::PI * 1e-6).abs() < 1e-15);
+}

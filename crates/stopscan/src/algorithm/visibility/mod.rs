@@ -13,6 +13,7 @@
 //! error.
 
 pub mod expansion;
+pub mod range;
 pub mod sweep;
 
 use serde::{Deserialize, Serialize};
@@ -93,6 +94,11 @@ impl VisibilityRegion {
     }
 }
 
+/// The area of a polygon given counter-clockwise, computed relative to `o` for precision.
+pub fn polygon_area_of(o: Point, poly: &[Point]) -> f64 {
+    polygon_area(o, poly)
+}
+
 pub(crate) fn polygon_area(o: Point, poly: &[Point]) -> f64 {
     let n = poly.len();
     let mut s = 0.0;
@@ -170,6 +176,25 @@ impl Visibility {
         let mut out = VisibilityRegion::default();
         self.query_into(q, &mut expansion::Scratch::default(), &mut out)?;
         Ok(out)
+    }
+
+    /// The range-limited region of `q` (the paper's restricted visibility polygon): the
+    /// part of the visibility region within distance `range`, with exact arcs.
+    ///
+    /// # Errors
+    /// [`VisibilityError::Outside`] if `q` is not in the closed free space.
+    ///
+    /// # Example
+    /// ```
+    /// use stopscan::geometry::Domain;
+    /// use stopscan::algorithm::visibility::Visibility;
+    /// let room = vec![[0.0, 0.0], [10.0, 0.0], [10.0, 10.0], [0.0, 10.0]];
+    /// let v = Visibility::new(Domain::new(room, vec![]).unwrap()).unwrap();
+    /// let r = v.query_range([5.0, 5.0], 1.0).unwrap();
+    /// assert!((r.area() - std::f64::consts::PI).abs() < 1e-12);
+    /// ```
+    pub fn query_range(&self, q: Point, range: f64) -> Result<range::RangeRegion, VisibilityError> {
+        Ok(range::clip(&self.query(q)?, range))
     }
 
     /// [`Visibility::query`] reusing buffers (for many queries).

@@ -15,6 +15,15 @@ use crate::kernel::{Point, orient_sign};
 /// # Complexity
 /// O(n²) time, O(n) space.
 pub fn visible_area(domain: &Domain, q: Point) -> f64 {
+    visible_area_within(domain, q, f64::INFINITY)
+}
+
+/// The area visible from `q` within distance `range`: each angular interval is split where
+/// its nearest edge crosses the circle, and each part is a triangle or a circular sector.
+///
+/// # Complexity
+/// O(n²) time, O(n) space.
+pub fn visible_area_within(domain: &Domain, q: Point, range: f64) -> f64 {
     let edges: Vec<(Point, Point)> = domain
         .rings()
         .iter()
@@ -43,11 +52,49 @@ pub fn visible_area(domain: &Domain, q: Point) -> f64 {
             }
         }
         let Some((_, p0, p1)) = best else { continue };
-        let h0 = ray_line(q, [a0.cos(), a0.sin()], p0, p1);
-        let h1 = ray_line(q, [a1.cos(), a1.sin()], p0, p1);
-        area += 0.5 * ((h0[0] - q[0]) * (h1[1] - q[1]) - (h1[0] - q[0]) * (h0[1] - q[1]));
+        let mut cuts = vec![a0, a1];
+        if range.is_finite() {
+            for t in circle_line(q, range, p0, p1) {
+                let mut a = t;
+                while a < a0 {
+                    a += tau;
+                }
+                if a > a0 && a < a1 {
+                    cuts.push(a);
+                }
+            }
+        }
+        cuts.sort_by(f64::total_cmp);
+        for w in cuts.windows(2) {
+            let (b0, b1) = (w[0], w[1]);
+            let m = 0.5 * (b0 + b1);
+            let hm = ray_line(q, [m.cos(), m.sin()], p0, p1);
+            if (hm[0] - q[0]).hypot(hm[1] - q[1]) <= range {
+                let h0 = ray_line(q, [b0.cos(), b0.sin()], p0, p1);
+                let h1 = ray_line(q, [b1.cos(), b1.sin()], p0, p1);
+                area += 0.5 * ((h0[0] - q[0]) * (h1[1] - q[1]) - (h1[0] - q[0]) * (h0[1] - q[1]));
+            } else {
+                area += 0.5 * range * range * (b1 - b0);
+            }
+        }
     }
     area
+}
+
+/// Angles (around `q`) where the line through `a`, `b` meets the circle of radius `r`.
+fn circle_line(q: Point, r: f64, a: Point, b: Point) -> Vec<f64> {
+    let (dx, dy) = (b[0] - a[0], b[1] - a[1]);
+    let (fx, fy) = (a[0] - q[0], a[1] - q[1]);
+    let (qa, qb, qc) = (dx * dx + dy * dy, 2.0 * (fx * dx + fy * dy), fx * fx + fy * fy - r * r);
+    let disc = qb * qb - 4.0 * qa * qc;
+    if qa == 0.0 || disc < 0.0 {
+        return vec![];
+    }
+    let s = disc.sqrt();
+    [(-qb - s) / (2.0 * qa), (-qb + s) / (2.0 * qa)]
+        .iter()
+        .map(|t| (fy + t * dy).atan2(fx + t * dx))
+        .collect()
 }
 
 fn ray_segment(q: Point, d: Point, a: Point, b: Point) -> Option<f64> {
