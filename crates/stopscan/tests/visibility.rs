@@ -258,3 +258,84 @@ fn range_limited_regions_match_the_sweep_and_brute_force() {
     let r = v.query_range(q, 1e-3).unwrap();
     assert!((r.area() - std::f64::consts::PI * 1e-6).abs() < 1e-15);
 }
+
+#[test]
+fn regions_seen_from_all_vertices_cover_the_free_space() {
+    use stopscan::algorithm::region::Region;
+    for seed in 0..6 {
+        let d = forest(200 + seed, 4 + seed as usize);
+        let v = Visibility::new(d.clone()).unwrap();
+        let polys: Vec<Vec<Point>> =
+            d.rings().iter().flatten().map(|&p| v.query(p).unwrap().polygon).collect();
+        let covered = Region::union_all(&polys);
+        assert!(
+            (covered.area() - d.area()).abs() <= 1e-7 * d.area(),
+            "seed {seed}: {} vs {}",
+            covered.area(),
+            d.area()
+        );
+        let missing = Region::of_domain(&d).difference(&covered);
+        assert!(missing.area() <= 1e-7 * d.area(), "uncovered {}", missing.area());
+    }
+}
+
+#[test]
+fn shortest_paths_match_a_dijkstra_over_all_vertices() {
+    use stopscan::algorithm::shortest_path::PathPlanner;
+    use stopscan::kernel::{RingSide, ring_side};
+    let mut rng = rand_chacha::ChaCha8Rng::seed_from_u64(77);
+    for seed in 0..8 {
+        let d = forest(300 + seed, 3 + seed as usize);
+        let v = Visibility::new(d.clone()).unwrap();
+        let planner = PathPlanner::new(&v);
+        let verts: Vec<Point> = d.rings().iter().flatten().copied().collect();
+        for _ in 0..4 {
+            let (s, t) = (free_point(&d, &mut rng), free_point(&d, &mut rng));
+            let path = planner.shortest_path(s, t).unwrap();
+            // Every segment stays in the free space (sampled), and the path is connected.
+            assert_eq!(path.points.first(), Some(&s));
+            assert_eq!(path.points.last(), Some(&t));
+            for w in path.points.windows(2) {
+                for k in 0..=50 {
+                    let u = f64::from(k) / 50.0;
+                    let p = [w[0][0] + u * (w[1][0] - w[0][0]), w[0][1] + u * (w[1][1] - w[0][1])];
+                    assert_ne!(
+                        d.locate(p),
+                        Location::Outside,
+                        "segment {w:?} leaves the free space at {p:?}"
+                    );
+                }
+            }
+            // Oracle: Dijkstra over s, t and all vertices; u sees x when x lies in u's region.
+            let mut nodes = vec![s, t];
+            nodes.extend(&verts);
+            let regions: Vec<Vec<Point>> =
+                nodes.iter().map(|&p| v.query(p).unwrap().polygon).collect();
+            let n = nodes.len();
+            let mut g = vec![f64::INFINITY; n];
+            let mut done = vec![false; n];
+            g[0] = 0.0;
+            for _ in 0..n {
+                let Some(k) = (0..n).filter(|&k| !done[k]).min_by(|&a, &b| g[a].total_cmp(&g[b]))
+                else {
+                    break;
+                };
+                done[k] = true;
+                for m in 0..n {
+                    if !done[m] && ring_side(&regions[k], nodes[m]) != RingSide::Outside {
+                        let c = g[k] + (nodes[k][0] - nodes[m][0]).hypot(nodes[k][1] - nodes[m][1]);
+                        if c < g[m] {
+                            g[m] = c;
+                        }
+                    }
+                }
+            }
+            assert!(
+                (path.length - g[1]).abs() <= 1e-9 * g[1],
+                "seed {seed}: planner {} vs oracle {}",
+                path.length,
+                g[1]
+            );
+        }
+    }
+}

@@ -2,5 +2,7 @@
 
 pub mod mdp;
 pub mod nelder_mead;
+pub mod region;
+pub mod shortest_path;
 pub mod triangulation;
 pub mod visibility;
