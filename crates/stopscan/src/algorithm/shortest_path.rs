@@ -297,7 +297,7 @@ mod tests {
         assert!(segment_is_free(v.mesh(), [4.0, 0.5], [4.0, 2.0]));
         assert!(segment_is_free(v.mesh(), [4.0, 2.0], [6.0, 2.0]), "along a hole's edge");
         assert!(!segment_is_free(v.mesh(), [4.0, 2.0], [6.0, 8.0]), "through the hole");
-        assert!(segment_is_free(v.mesh(), [2.0, 0.0], [8.0, 4.0]) == false);
+        assert!(!segment_is_free(v.mesh(), [2.0, 0.0], [8.0, 4.0]));
         assert!(segment_is_free(v.mesh(), [2.0, 0.0], [4.0, 2.0]), "to a corner");
         assert!(p.shortest_path([5.0, 5.0], [1.0, 1.0]).is_none(), "start inside the hole");
     }
