@@ -77,7 +77,8 @@ fn regions(c: &mut Criterion) {
         qs.iter().take(100).map(|&q| v.query(q).unwrap().polygon).collect();
     let mut g = c.benchmark_group("region_union_of_100_visibility_regions");
     g.sample_size(10);
-    g.bench_function("one_overlay", |b| b.iter(|| black_box(Region::union_all(&polys).area())));
+    g.bench_function("balanced_tree", |b| b.iter(|| black_box(Region::union_all(&polys).area())));
+    g.bench_function("one_overlay", |b| b.iter(|| black_box(Region::overlay_all(&polys).area())));
     g.bench_function("pairwise_fold", |b| {
         b.iter(|| {
             let acc = polys.iter().fold(Region::empty(), |acc, p| acc.union(&Region::polygon(p)));

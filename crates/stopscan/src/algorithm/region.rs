@@ -3,8 +3,9 @@
 //!
 //! i_overlay snaps coordinates to an integer grid over the operands' bounding box (31 bits a
 //! side), so results are exact up to about 5e-10 of the extent; areas carry that relative
-//! precision. A union of many polygons is done in one overlay (`union_all`), which is faster
-//! than folding pairwise (`benches/region.rs` measures both).
+//! precision. A union of many polygons is merged as a balanced tree of pairwise unions
+//! (`union_all`); `benches/visibility.rs` measures it against one overlay of everything and
+//! against a left fold.
 
 use i_overlay::core::fill_rule::FillRule;
 use i_overlay::core::overlay_rule::OverlayRule;
@@ -30,7 +31,7 @@ impl Region {
 
     /// One simple polygon (either orientation).
     pub fn polygon(ring: &[Point]) -> Self {
-        Self::union_all(&[ring.to_vec()])
+        Self::overlay_all(&[ring.to_vec()])
     }
 
     /// The free space of a domain.
@@ -38,11 +39,31 @@ impl Region {
         Self { shapes: vec![d.rings().to_vec()] }
     }
 
-    /// The union of many simple polygons in one overlay.
+    /// The union of many simple polygons, merged as a balanced binary tree of pairwise
+    /// unions. Visibility regions overlap heavily; one overlay of all of them must resolve
+    /// every mutual crossing at once, and is several times slower (`benches/visibility.rs`,
+    /// `region_union_*`).
+    ///
+    /// # Complexity
+    /// O(log m) rounds of pairwise overlays for m polygons.
+    pub fn union_all(polygons: &[Vec<Point>]) -> Self {
+        let mut layer: Vec<Region> =
+            polygons.iter().filter(|p| p.len() >= 3).map(|p| Self::polygon(p)).collect();
+        while layer.len() > 1 {
+            layer = layer
+                .chunks(2)
+                .map(|c| if c.len() == 2 { c[0].union(&c[1]) } else { c[0].clone() })
+                .collect();
+        }
+        layer.pop().unwrap_or_default()
+    }
+
+    /// The union of many simple polygons in one overlay (the alternative `union_all` is
+    /// measured against).
     ///
     /// # Complexity
     /// O((n + k) log n) for n edges in all and k crossings.
-    pub fn union_all(polygons: &[Vec<Point>]) -> Self {
+    pub fn overlay_all(polygons: &[Vec<Point>]) -> Self {
         if polygons.is_empty() {
             return Self::empty();
         }

@@ -159,12 +159,13 @@ impl Domain {
         }
         check_intersections(&rings)?;
         for (r, ring) in rings.iter_mut().enumerate() {
-            // Outer counter-clockwise, holes clockwise: free space on the left.
-            let area = signed_area(ring);
-            if area == 0.0 {
+            // Outer counter-clockwise, holes clockwise: free space on the left. Decided exactly:
+            // a float area can have the wrong sign on slivers with huge coordinates.
+            let turn = ring_orientation(ring);
+            if turn == 0 {
                 return Err(InvalidEnvironment::Degenerate { ring: r });
             }
-            if (r == 0) != (area > 0.0) {
+            if (r == 0) != (turn > 0) {
                 ring.reverse();
             }
         }
@@ -255,6 +256,17 @@ impl Domain {
         }
         b
     }
+}
+
+/// The exact orientation of a simple ring (+1 counter-clockwise, -1 clockwise, 0 degenerate):
+/// the turn at its lexicographically smallest vertex, which is strictly convex on a simple,
+/// non-degenerate ring.
+pub(crate) fn ring_orientation(ring: &[Point]) -> i8 {
+    let n = ring.len();
+    let k = (0..n)
+        .min_by(|&a, &b| ring[a][0].total_cmp(&ring[b][0]).then(ring[a][1].total_cmp(&ring[b][1])))
+        .unwrap_or(0);
+    kernel::orient_sign(ring[(k + n - 1) % n], ring[k], ring[(k + 1) % n])
 }
 
 /// Twice-free, shifted shoelace area (positive for counter-clockwise).

@@ -1,0 +1,21 @@
+//! Regression tests, each named after the fuzz case or bug it keeps fixed.
+
+use stopscan::algorithm::visibility::Visibility;
+use stopscan::io::text_formats::parse_wkt;
+use stopscan::kernel::orient_sign;
+
+/// fuzz/artifacts/loaders/crash-3db3be0b…: a sliver with coordinates near 2e18 whose float
+/// area has a different sign in each vertex order. Orientation is now decided exactly.
+#[test]
+fn fuzz_loaders_3db3be0b_sliver_orientation() {
+    let e = parse_wkt("POLYGON ((5 0, 4 0,  2333333333333333331 1))", "fuzz").unwrap();
+    let r = e.domain.outer();
+    let k = (0..3).min_by(|&a, &b| r[a][0].total_cmp(&r[b][0])).unwrap();
+    assert_eq!(
+        orient_sign(r[(k + 2) % 3], r[k], r[(k + 1) % 3]),
+        1,
+        "the outer ring is counter-clockwise"
+    );
+    let v = Visibility::new(e.domain.clone()).unwrap();
+    assert!(v.query([4.5, 0.0]).is_ok(), "a point on the boundary edge");
+}
