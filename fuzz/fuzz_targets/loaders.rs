@@ -16,6 +16,7 @@ fuzz_target!(|data: &[u8]| {
     for d in results.into_iter().flatten() {
         // The float area of a sliver with huge coordinates can round to 0; it must stay finite.
         assert!(d.area().is_finite());
-        let _ = stopscan::algorithm::visibility::Visibility::new(d).expect("a valid domain triangulates");
+        let _ = stopscan::algorithm::visibility::Visibility::new(d)
+            .expect("a valid domain triangulates");
     }
 });
