@@ -90,13 +90,7 @@ pub(crate) fn run(a: &VisibilityArgs, g: &Global) -> anyhow::Result<()> {
         if g.format == Format::Svg {
             let approx =
                 VisibilityRegion { viewpoint: q, polygon: rr.to_polygon(tol), boundary: vec![] };
-            let svg = stopscan::render::scene_svg(vis.domain(), std::slice::from_ref(&approx));
-            match &g.out {
-                Some(path) => std::fs::write(path, svg)
-                    .with_context(|| format!("cannot write {}", path.display()))?,
-                None => std::io::stdout().lock().write_all(svg.as_bytes())?,
-            }
-            return Ok(());
+            return write_svg(g, &vis, &approx);
         }
         let value = range_json(&rr, tol);
         return emit(g, &value, true, |w| {
@@ -112,13 +106,7 @@ pub(crate) fn run(a: &VisibilityArgs, g: &Global) -> anyhow::Result<()> {
         });
     }
     if g.format == Format::Svg {
-        let svg = stopscan::render::scene_svg(vis.domain(), std::slice::from_ref(&r));
-        match &g.out {
-            Some(path) => std::fs::write(path, svg)
-                .with_context(|| format!("cannot write {}", path.display()))?,
-            None => std::io::stdout().lock().write_all(svg.as_bytes())?,
-        }
-        return Ok(());
+        return write_svg(g, &vis, &r);
     }
     let value = region_json(&r);
     emit(g, &value, true, |w| {
@@ -150,6 +138,17 @@ pub(crate) fn run(a: &VisibilityArgs, g: &Global) -> anyhow::Result<()> {
         }
         t.write(w)
     })
+}
+
+/// The scene as SVG, to `--out` or standard output.
+fn write_svg(g: &Global, vis: &Visibility, region: &VisibilityRegion) -> anyhow::Result<()> {
+    let svg = stopscan::render::scene_svg(vis.domain(), std::slice::from_ref(region));
+    match &g.out {
+        Some(path) => {
+            std::fs::write(path, svg).with_context(|| format!("cannot write {}", path.display()))
+        }
+        None => Ok(std::io::stdout().lock().write_all(svg.as_bytes())?),
+    }
 }
 
 pub(crate) fn bench(a: &BenchArgs, g: &Global) -> anyhow::Result<()> {
