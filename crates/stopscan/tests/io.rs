@@ -164,3 +164,40 @@ fn every_shared_environment_loads() {
     }
     assert!(n >= 20, "{n} files");
 }
+
+#[test]
+fn png_maps_load_like_pgm() {
+    let dir = temp("png");
+    // 8×6 free room with a 2×2 blocked pillar, as grey PNG and as PGM.
+    let (w, h) = (8u32, 6u32);
+    let px: Vec<u8> = (0..w * h)
+        .map(|i| if (3..5).contains(&(i % w)) && (2..4).contains(&(i / w)) { 0 } else { 254 })
+        .collect();
+    let mut bytes = Vec::new();
+    {
+        let mut enc = png::Encoder::new(&mut bytes, w, h);
+        enc.set_color(png::ColorType::Grayscale);
+        enc.set_depth(png::BitDepth::Eight);
+        enc.write_header().unwrap().write_image_data(&px).unwrap();
+    }
+    write(&dir, "m.png", &bytes);
+    let mut pgm = format!("P5\n{w} {h}\n255\n").into_bytes();
+    pgm.extend_from_slice(&px);
+    write(&dir, "m.pgm", &pgm);
+    let yaml = |img: &str| {
+        format!("image: {img}\nresolution: 0.5\norigin: [0, 0, 0]\nnegate: 0\nfree_thresh: 0.196\n")
+    };
+    let a = read(
+        &write(&dir, "a.yaml", yaml("m.png").as_bytes()),
+        &RosMapOptions { start: None, min_speck_area: 0.0 },
+    )
+    .unwrap();
+    let b = read(
+        &write(&dir, "b.yaml", yaml("m.pgm").as_bytes()),
+        &RosMapOptions { start: None, min_speck_area: 0.0 },
+    )
+    .unwrap();
+    assert_eq!(a.domain, b.domain);
+    assert_eq!(a.domain.holes().len(), 1);
+    assert!((a.domain.area() - (4.0 * 3.0 - 1.0)).abs() < 1e-12);
+}
