@@ -269,13 +269,13 @@ fn regions_seen_from_all_vertices_cover_the_free_space() {
             d.rings().iter().flatten().map(|&p| v.query(p).unwrap().polygon).collect();
         let covered = Region::union_all(&polys);
         assert!(
-            (covered.area() - d.area()).abs() <= 1e-9 * d.area(),
+            (covered.area() - d.area()).abs() <= 1e-7 * d.area(),
             "seed {seed}: {} vs {}",
             covered.area(),
             d.area()
         );
         let missing = Region::of_domain(&d).difference(&covered);
-        assert!(missing.area() <= 1e-9 * d.area(), "uncovered {}", missing.area());
+        assert!(missing.area() <= 1e-7 * d.area(), "uncovered {}", missing.area());
     }
 }
 

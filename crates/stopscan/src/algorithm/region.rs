@@ -1,9 +1,9 @@
 //! Regions for coverage bookkeeping: union, difference, intersection and area of many
 //! polygons, by i_overlay.
 //!
-//! i_overlay snaps coordinates to an integer grid over the operands' bounding box; we use its
-//! 64-bit engine, so results are exact up to about 1e-18 of the extent (the 32-bit default
-//! would give 5e-10, too coarse to certify coverage to 1e-9). A union of many polygons is merged as a balanced tree of pairwise unions
+//! i_overlay snaps coordinates to an integer grid over the operands' bounding box (31 bits a
+//! side), so results are exact up to about 5e-10 of the extent; areas carry that relative
+//! precision. A union of many polygons is merged as a balanced tree of pairwise unions
 //! (`union_all`); `benches/visibility.rs` measures it against one overlay of everything and
 //! against a left fold.
 
@@ -80,8 +80,7 @@ impl Region {
         if a.is_empty() && b.is_empty() {
             return Self::empty();
         }
-        let shapes =
-            FloatOverlay::<Point, i64>::from_subj_and_clip(&a, &b).overlay(rule, FillRule::NonZero);
+        let shapes = FloatOverlay::with_subj_and_clip(&a, &b).overlay(rule, FillRule::NonZero);
         Self { shapes }
     }
 
