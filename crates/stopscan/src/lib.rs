@@ -28,6 +28,7 @@
 
 pub mod algorithm;
 pub mod experiment;
+pub mod generate;
 pub mod geometry;
 pub mod io;
 pub mod kernel;

@@ -5,6 +5,7 @@
 //! speak the same protocol as the simulator.
 
 pub mod corner;
+pub mod polygon;
 
 use serde::{Deserialize, Serialize};
 

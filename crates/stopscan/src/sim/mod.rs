@@ -2,6 +2,7 @@
 //! [`CostModel`](crate::protocol::CostModel) and pushes events to observers, which listen.
 
 pub mod corner;
+pub mod polygon;
 
 use std::ops::ControlFlow;
 

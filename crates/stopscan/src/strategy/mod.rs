@@ -1,3 +1,4 @@
 //! Online strategies, one family per folder. They see observations only, never the world.
 
 pub mod corner;
+pub mod polygon;
