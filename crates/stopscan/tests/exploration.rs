@@ -3,7 +3,7 @@
 
 use rand::{RngExt, SeedableRng};
 use stopscan::algorithm::region::Region;
-use stopscan::generate::{Instance, comb, pillar_forest, spiral, star};
+use stopscan::generate::{Instance, comb, office, pillar_forest, spiral, star};
 use stopscan::geometry::Location;
 use stopscan::kernel::{RingSide, ring_side};
 use stopscan::protocol::CostModel;
@@ -69,6 +69,9 @@ fn stars_combs_and_forests_stay_within_r_plus_one() {
     for seed in 0..12 {
         check(&pillar_forest(30.0, 20.0, 2 + seed as usize, seed).unwrap(), "forest");
     }
+    for (rooms, desks) in [(1, 0), (2, 3), (5, 12), (10, 40)] {
+        check(&office(rooms, desks, rooms as u64).unwrap(), "office");
+    }
 }
 
 #[test]
@@ -77,4 +80,12 @@ fn the_same_instance_gives_the_same_run() {
     let (_, a) = explore(&inst);
     let (_, b) = explore(&inst);
     assert_eq!(serde_json::to_string(&a).unwrap(), serde_json::to_string(&b).unwrap());
+}
+
+#[test]
+fn a_thousand_vertex_office_floor() {
+    let inst = office(40, 220, 1).unwrap();
+    assert!(inst.domain.vertex_count() >= 1000);
+    let run = check(&inst, "office 1000");
+    assert!(run.tally.scans >= 80, "every room needs a view: {}", run.tally.scans);
 }

@@ -120,6 +120,96 @@ pub fn comb(teeth: usize) -> Result<Instance, InvalidEnvironment> {
     Ok(Instance { domain, start: [0.5, 0.5] })
 }
 
+/// A seeded office floor: a corridor along the middle with `rooms_per_side` rooms above and
+/// below it, each opening onto the corridor through a door, and up to `desks` rectangular
+/// desks (holes) placed in the rooms. Walls are 0.2 m thick, rooms 4 m × 5 m, doors 1 m.
+///
+/// # Errors
+/// Never (desks that would touch a wall or each other are skipped).
+pub fn office(
+    rooms_per_side: usize,
+    desks: usize,
+    seed: u64,
+) -> Result<Instance, InvalidEnvironment> {
+    let n = rooms_per_side.max(1);
+    let (room_w, room_h, wall, door, corridor) = (4.0, 5.0, 0.2, 1.0, 2.0);
+    let (c0, c1) = (room_h + wall, room_h + wall + corridor); // corridor between y = c0 and c1
+    let top = c1 + wall + room_h;
+    let x0 = |i: usize| i as f64 * (room_w + wall);
+    // Counter-clockwise: bottom rooms left to right, then top rooms right to left.
+    let mut ring: Vec<Point> = Vec::new();
+    for i in 0..n {
+        let (a, b) = (x0(i), x0(i) + room_w);
+        let (d0, d1) = (a + 0.5 * (room_w - door), a + 0.5 * (room_w + door));
+        if i == 0 {
+            ring.push([a, c0]);
+        }
+        ring.extend([
+            [d0, c0],
+            [d0, c0 - wall],
+            [a, c0 - wall],
+            [a, 0.0],
+            [b, 0.0],
+            [b, c0 - wall],
+            [d1, c0 - wall],
+            [d1, c0],
+        ]);
+        if i + 1 == n {
+            ring.push([b, c0]);
+        }
+    }
+    for i in (0..n).rev() {
+        let (a, b) = (x0(i), x0(i) + room_w);
+        let (d0, d1) = (a + 0.5 * (room_w - door), a + 0.5 * (room_w + door));
+        if i + 1 == n {
+            ring.push([b, c1]);
+        }
+        ring.extend([
+            [d1, c1],
+            [d1, c1 + wall],
+            [b, c1 + wall],
+            [b, top],
+            [a, top],
+            [a, c1 + wall],
+            [d0, c1 + wall],
+            [d0, c1],
+        ]);
+        if i == 0 {
+            ring.push([a, c1]);
+        }
+    }
+    let mut rng = ChaCha8Rng::seed_from_u64(seed);
+    let mut holes: Vec<Vec<Point>> = Vec::new();
+    let mut boxes: Vec<[f64; 4]> = Vec::new();
+    for _ in 0..desks * 20 {
+        if holes.len() == desks {
+            break;
+        }
+        let i = rng.random_range(0..n);
+        let upper = rng.random_bool(0.5);
+        let (ry0, ry1) = if upper { (c1 + wall, top) } else { (0.0, c0 - wall) };
+        let (w, h) = (rng.random_range(0.6..1.6), rng.random_range(0.5..1.0));
+        let x = rng.random_range(x0(i) + 0.4..x0(i) + room_w - 0.4 - w);
+        let y = rng.random_range(ry0 + 0.4..ry1 - 0.4 - h);
+        let b = [x, y, x + w, y + h];
+        // Keep the door's approach free and desks apart.
+        let (d0, d1) = (x0(i) + 0.5 * (room_w - door) - 0.3, x0(i) + 0.5 * (room_w + door) + 0.3);
+        let near_door = if upper { y < ry0 + 1.2 } else { y + h > ry1 - 1.2 };
+        if near_door && x < d1 && x + w > d0 {
+            continue;
+        }
+        if boxes.iter().any(|o| {
+            b[0] < o[2] + 0.3 && o[0] < b[2] + 0.3 && b[1] < o[3] + 0.3 && o[1] < b[3] + 0.3
+        }) {
+            continue;
+        }
+        boxes.push(b);
+        holes.push(vec![[x, y], [x, y + h], [x + w, y + h], [x + w, y]]);
+    }
+    let domain = Domain::new(ring, holes)?;
+    Ok(Instance { domain, start: [0.5, 0.5 * (c0 + c1)] })
+}
+
 /// A seeded pillar forest: a rectangle `w × h` with `pillars` disjoint convex pillars.
 ///
 /// # Errors
@@ -187,6 +277,13 @@ mod tests {
             assert_eq!(c.domain.reflex_vertices().len(), 2 * (t - 1));
             assert_eq!(c.domain.locate(c.start), Location::Interior);
         }
+        for (rooms, desks) in [(1, 0), (3, 4), (8, 30)] {
+            let o = office(rooms, desks, 7).unwrap();
+            assert_eq!(o.domain.locate(o.start), Location::Interior);
+            assert!(o.domain.holes().len() <= desks);
+        }
+        let big = office(40, 220, 1).unwrap();
+        assert!(big.domain.vertex_count() >= 1000, "{}", big.domain.vertex_count());
         let f = pillar_forest(30.0, 20.0, 12, 3).unwrap();
         assert!(f.domain.holes().len() >= 8);
         assert_eq!(f.domain.locate(f.start), Location::Interior);

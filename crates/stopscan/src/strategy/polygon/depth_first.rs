@@ -26,8 +26,21 @@ use crate::protocol::Action;
 struct View {
     at: Point,
     polygon: Vec<Point>,
-    /// Windows as `(from, to)` in the region's counter-clockwise order.
-    windows: Vec<(Point, Point)>,
+    /// Bounding box `[min, max]` of the polygon.
+    bounds: [Point; 2],
+    /// Windows in the region's counter-clockwise order.
+    windows: Vec<Window>,
+}
+
+/// A window and how far its exploration test has got. Samples only ever turn from unexplored
+/// to explored, so the test resumes where it stopped: at sample `sample`, against the views
+/// from index `checked` on.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+struct Window {
+    from: Point,
+    to: Point,
+    sample: usize,
+    checked: usize,
 }
 
 /// The depth-first exploration of the paper. Its whole state is serialisable.
@@ -56,19 +69,38 @@ impl DepthFirst {
         [from[0] + t * dx - e * dy, from[1] + t * dy + e * dx]
     }
 
-    fn explored(&self, p: Point) -> bool {
-        self.views.iter().any(|v| ring_side(&v.polygon, p) != RingSide::Outside)
+    /// Whether any of `views[from..]` covers `p`.
+    fn covered_by(&self, from: usize, p: Point) -> bool {
+        self.views[from..].iter().rev().any(|v| {
+            p[0] >= v.bounds[0][0]
+                && p[0] <= v.bounds[1][0]
+                && p[1] >= v.bounds[0][1]
+                && p[1] <= v.bounds[1][1]
+                && ring_side(&v.polygon, p) != RingSide::Outside
+        })
     }
 
     /// The next viewpoint for the first unexplored window of `view`: at the first of
     /// [`Self::SAMPLES`] points along it whose unseen side is not yet covered, moved a
     /// millionth of the window's length into the seen side (inside the view's region, so the
     /// straight move there is safe although the window's points are constructed).
-    fn first_unexplored(&self, view: usize) -> Option<Point> {
-        for &(f, t) in &self.views[view].windows {
-            for k in 0..Self::SAMPLES {
-                let u = (k as f64 + 0.5) / Self::SAMPLES as f64;
-                if !self.explored(Self::along(f, t, u, -1.0)) {
+    fn first_unexplored(&mut self, view: usize) -> Option<Point> {
+        let n = self.views.len();
+        for k in 0..self.views[view].windows.len() {
+            loop {
+                let w = &self.views[view].windows[k];
+                if w.sample == Self::SAMPLES {
+                    break;
+                }
+                let (f, t, u, from) =
+                    (w.from, w.to, (w.sample as f64 + 0.5) / Self::SAMPLES as f64, w.checked);
+                let covered = self.covered_by(from, Self::along(f, t, u, -1.0));
+                let w = &mut self.views[view].windows[k];
+                if covered {
+                    w.sample += 1;
+                    w.checked = 0;
+                } else {
+                    w.checked = n;
                     return Some(Self::along(f, t, u, 1.0));
                 }
             }
@@ -121,11 +153,21 @@ impl PolygonStrategy for DepthFirst {
                     .boundary
                     .iter()
                     .filter_map(|b| match *b {
-                        BoundaryPiece::Window { from, to, .. } => Some((from, to)),
+                        BoundaryPiece::Window { from, to, .. } => {
+                            Some(Window { from, to, sample: 0, checked: 0 })
+                        }
                         _ => None,
                     })
                     .collect();
-                self.views.push(View { at: obs.at, polygon: obs.region.polygon.clone(), windows });
+                let poly = &obs.region.polygon;
+                let mut bounds = [[f64::MAX; 2], [f64::MIN; 2]];
+                for p in poly {
+                    bounds = [
+                        [bounds[0][0].min(p[0]), bounds[0][1].min(p[1])],
+                        [bounds[1][0].max(p[0]), bounds[1][1].max(p[1])],
+                    ];
+                }
+                self.views.push(View { at: obs.at, polygon: poly.clone(), bounds, windows });
                 self.stack.push(self.views.len() - 1);
                 self.plan()
             }
