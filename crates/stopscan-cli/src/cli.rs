@@ -6,8 +6,8 @@ use clap::{Args, Parser, Subcommand, ValueEnum};
 
 /// Where a robot should stop and scan when every scan costs time.
 ///
-/// With no command, runs the built-in demo: the circle strategy at a few distances and the
-/// four corner-paper strategies on one belief, writing `stopscan-out/`.
+/// With no command, runs the main job: the paper's exploration of the built-in office floor,
+/// writing `stopscan-out/run.json` and `stopscan-out/scene.svg`.
 #[derive(Debug, Parser)]
 #[command(name = "stopscan", version, about, long_about = None)]
 pub(crate) struct Cli {
@@ -51,6 +51,10 @@ pub(crate) enum Command {
     },
     /// The visibility region of a point in an environment, with labelled boundary pieces.
     Visibility(VisibilityArgs),
+    /// Explore an unknown environment with an online strategy: run record and scene.
+    Explore(ExploreArgs),
+    /// Write a generated instance (spiral, star, comb, office, forest) as GeoJSON.
+    Generate(GenerateArgs),
     /// Environment files: convert ROS maps, .pol, WKT and the benchmark format to GeoJSON.
     Map {
         #[command(subcommand)]
@@ -64,6 +68,9 @@ pub(crate) enum Command {
 
 #[derive(Debug, Subcommand)]
 pub(crate) enum CornerCommand {
+    /// The corner demo: the circle strategy at a few distances and the four corner-paper
+    /// strategies on one belief; writes a chart.
+    Demo,
     /// The 2-competitive circle strategy at distance D: ratio c(D), steps, scan points.
     Circle {
         /// Distance to the corner in units of v·τ (scan cost 1, speed 1).
@@ -254,6 +261,61 @@ pub(crate) struct SimulateArgs {
     pub(crate) setup: SetupArgs,
     #[command(flatten)]
     pub(crate) readings: Readings,
+}
+
+#[derive(Debug, Args)]
+pub(crate) struct ExploreArgs {
+    /// The environment (GeoJSON with a "start" property, WKT, .pol, ROS map, benchmark format).
+    #[arg(long)]
+    pub(crate) env: PathBuf,
+    /// The strategy (see --help): depth_first is the paper's algorithm.
+    #[arg(long, default_value = "depth_first")]
+    pub(crate) strategy: String,
+    /// The start "X,Y" (default: the file's start, or its first query point).
+    #[arg(long, allow_hyphen_values = true)]
+    pub(crate) start: Option<String>,
+    /// Seconds per scan.
+    #[arg(long, default_value_t = 1.0)]
+    pub(crate) scan_time: f64,
+    /// Seconds per move.
+    #[arg(long, default_value_t = 0.0)]
+    pub(crate) move_time: f64,
+    /// Metres per second.
+    #[arg(long, default_value_t = 1.0)]
+    pub(crate) speed: f64,
+    /// Write the scene (domain, regions, path, numbered scans) as SVG.
+    #[arg(long)]
+    pub(crate) svg: Option<PathBuf>,
+}
+
+#[derive(Debug, Clone, Copy, PartialEq, Eq, ValueEnum)]
+pub(crate) enum Family {
+    /// A spiral corridor that needs r + 1 views (the paper's Fig. 9).
+    Spiral,
+    /// A star whose optimum is 2 views (the paper's Fig. 11).
+    Star,
+    /// A corridor with rooms opening on one side.
+    Comb,
+    /// An office floor: rooms with doors on both sides of a corridor, desks as holes.
+    Office,
+    /// A rectangle with random convex pillars.
+    Forest,
+}
+
+#[derive(Debug, Args)]
+pub(crate) struct GenerateArgs {
+    /// The family.
+    #[arg(value_enum)]
+    pub(crate) family: Family,
+    /// Size: spiral turns, star spikes, comb teeth, office rooms per side, forest pillars.
+    #[arg(long, default_value_t = 6)]
+    pub(crate) size: usize,
+    /// Office desks.
+    #[arg(long, default_value_t = 0)]
+    pub(crate) desks: usize,
+    /// The GeoJSON to write (with the start as its "start" property).
+    #[arg(short = 'o', long = "output")]
+    pub(crate) output: PathBuf,
 }
 
 #[derive(Debug, Subcommand)]

@@ -20,6 +20,7 @@ use crate::output::{Table, emit, num, write_json_atomic};
 
 pub(crate) fn run(command: &CornerCommand, g: &Global) -> anyhow::Result<()> {
     match command {
+        CornerCommand::Demo => demo(g),
         CornerCommand::Circle { distance } => circle_cmd(*distance, g),
         CornerCommand::Thresholds { count } => thresholds(*count, g),
         CornerCommand::Optimal { distance, scans } => optimal(*distance, *scans, g),

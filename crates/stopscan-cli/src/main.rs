@@ -4,6 +4,7 @@
 mod bench;
 mod cli;
 mod corner;
+mod explore;
 mod output;
 mod visibility;
 
@@ -50,7 +51,9 @@ fn run(args: &cli::Cli) -> anyhow::Result<()> {
         anyhow::bail!("--format svg is only available for `stopscan visibility`");
     }
     match &args.command {
-        None => corner::demo(g),
+        None => explore::main_job(g),
+        Some(cli::Command::Explore(a)) => explore::run(a, g),
+        Some(cli::Command::Generate(a)) => explore::generate(a, g),
         Some(cli::Command::Corner { command }) => corner::run(command, g),
         Some(cli::Command::Visibility(v)) => visibility::run(v, g),
         Some(cli::Command::Map { command: cli::MapCommand::Import(a) }) => visibility::import(a, g),

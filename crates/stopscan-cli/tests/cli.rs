@@ -29,9 +29,97 @@ fn temp(name: &str) -> PathBuf {
 }
 
 #[test]
-fn demo_writes_its_outputs() {
-    let dir = temp("demo");
+fn main_job_explores_the_office_and_writes_the_run_record() {
+    let dir = temp("main");
     let out = stopscan(&["--out", dir.to_str().unwrap()]);
+    assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
+    let text = String::from_utf8(out.stdout).unwrap();
+    // Snapshot of the summary (paths excluded).
+    let summary: String =
+        text.lines().filter(|l| !l.starts_with("wrote ")).collect::<Vec<_>>().join("\n");
+    let expected = std::fs::read_to_string(
+        PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("tests/snapshots/main_job.txt"),
+    )
+    .unwrap();
+    assert_eq!(summary.trim_end(), expected.trim_end(), "the main job's summary changed");
+    let run: Value =
+        serde_json::from_str(&std::fs::read_to_string(dir.join("run.json")).unwrap()).unwrap();
+    for k in [
+        "format",
+        "environment",
+        "strategy",
+        "cost_model",
+        "sensor",
+        "robots",
+        "metrics",
+        "bounds",
+        "seed",
+        "stopscan_version",
+    ] {
+        assert!(!run[k].is_null(), "run.json lacks {k}");
+    }
+    assert_eq!(run["format"], "stopscan-run/1");
+    for k in [
+        "scans",
+        "moves",
+        "distance",
+        "time",
+        "scan_time_total",
+        "move_time_total",
+        "travel_time_total",
+        "covered_area",
+        "coverage",
+    ] {
+        assert!(run["metrics"][k].is_number(), "metrics.{k}");
+    }
+    let scans = run["metrics"]["scans"].as_u64().unwrap();
+    assert!(scans <= run["bounds"]["scans_upper"].as_u64().unwrap());
+    assert!((f(&run["metrics"], "coverage") - 1.0).abs() < 1e-7);
+    assert_eq!(run["robots"][0]["scans"].as_array().unwrap().len() as u64, scans);
+    let svg = std::fs::read_to_string(dir.join("scene.svg")).unwrap();
+    assert!(
+        svg.starts_with("<svg")
+            && svg.contains("<polyline")
+            && svg.matches("<circle").count() as u64 >= scans
+    );
+}
+
+#[test]
+fn explore_and_generate() {
+    let dir = temp("explore");
+    std::fs::create_dir_all(&dir).unwrap();
+    let env = dir.join("spiral.geojson");
+    let g = stopscan(&["generate", "spiral", "--size", "5", "-o", env.to_str().unwrap()]);
+    assert!(g.status.success());
+    let out = dir.join("run.json");
+    let v = json(&[
+        "explore",
+        "--env",
+        env.to_str().unwrap(),
+        "--out",
+        out.to_str().unwrap(),
+        "--svg",
+        dir.join("s.svg").to_str().unwrap(),
+        "--scan-time",
+        "2",
+        "--speed",
+        "0.5",
+    ]);
+    assert_eq!(v["metrics"]["scans"], 6, "a spiral with 5 turns needs r + 1 = 6 views");
+    assert_eq!(v["cost_model"]["scan_time"], 2.0);
+    assert!((f(&v["metrics"], "scan_time_total") - 12.0).abs() < 1e-12);
+    assert!(dir.join("s.svg").exists() && out.exists());
+    let bad = stopscan(&["explore", "--env", env.to_str().unwrap(), "--strategy", "teleport"]);
+    assert_eq!(bad.status.code(), Some(2));
+    assert!(String::from_utf8_lossy(&bad.stderr).contains("unknown strategy"));
+    let bad = stopscan(&["explore", "--env", env.to_str().unwrap(), "--start", "1000,1000"]);
+    assert!(String::from_utf8_lossy(&bad.stderr).contains("outside the free space"));
+}
+
+#[test]
+fn corner_demo_writes_its_outputs() {
+    let dir = temp("demo");
+    let out = stopscan(&["corner", "demo", "--out", dir.to_str().unwrap()]);
     assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
     let text = String::from_utf8_lossy(&out.stdout);
     for s in ["Circle strategy", "UNIREC", "EXPREC", "POLICY1", "POLICY2", "1.839287"] {

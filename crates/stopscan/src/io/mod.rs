@@ -3,6 +3,7 @@
 
 pub mod bench_format;
 pub mod ros_map;
+pub mod run_record;
 pub mod text_formats;
 
 use crate::geometry::InvalidEnvironment;

@@ -12,7 +12,7 @@ use serde::{Deserialize, Serialize};
 use crate::strategy::corner::mdp::Cell;
 
 mod scene;
-pub use scene::scene_svg;
+pub use scene::{exploration_svg, scene_svg};
 
 /// Why a picture could not be written.
 #[derive(Debug, thiserror::Error)]

@@ -68,3 +68,45 @@ pub fn scene_svg(domain: &Domain, regions: &[VisibilityRegion]) -> String {
     out.push_str("</svg>\n");
     out
 }
+
+/// An SVG of an exploration run: the domain, each scan's region in a translucent colour, the
+/// path driven, and the scan points numbered in order.
+pub fn exploration_svg(domain: &Domain, regions: &[VisibilityRegion], path: &[[f64; 2]]) -> String {
+    let base = scene_svg(domain, &[]);
+    let [lo, hi] = domain.bounds();
+    let (w, h) = ((hi[0] - lo[0]).max(1e-9), (hi[1] - lo[1]).max(1e-9));
+    let scale = 800.0 / w.max(h);
+    let x = |v: f64| 10.0 + (v - lo[0]) * scale;
+    let y = |v: f64| 10.0 + (hi[1] - v) * scale;
+    let mut out = base.trim_end().trim_end_matches("</svg>").to_string();
+    out.push('\n');
+    for (k, r) in regions.iter().enumerate() {
+        let hue = (k * 137) % 360;
+        let mut d = String::new();
+        for (i, p) in r.polygon.iter().enumerate() {
+            let _ = write!(d, "{}{:.3},{:.3} ", if i == 0 { "M" } else { "L" }, x(p[0]), y(p[1]));
+        }
+        let _ = writeln!(
+            out,
+            r#"<path d="{d}Z" fill="hsl({hue},70%,55%)" fill-opacity="0.18" stroke="none"/>"#
+        );
+    }
+    let pts: Vec<String> = path.iter().map(|p| format!("{:.3},{:.3}", x(p[0]), y(p[1]))).collect();
+    let _ = writeln!(
+        out,
+        r##"<polyline points="{}" fill="none" stroke="#111" stroke-width="1.5"/>"##,
+        pts.join(" ")
+    );
+    for (k, r) in regions.iter().enumerate() {
+        let (cx, cy) = (x(r.viewpoint[0]), y(r.viewpoint[1]));
+        let _ = writeln!(
+            out,
+            r##"<circle cx="{cx:.3}" cy="{cy:.3}" r="5" fill="#d62728" stroke="#000"/><text x="{:.3}" y="{:.3}" font-family="sans-serif" font-size="11">{}</text>"##,
+            cx + 6.0,
+            cy - 6.0,
+            k + 1
+        );
+    }
+    out.push_str("</svg>\n");
+    out
+}

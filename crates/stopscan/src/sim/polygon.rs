@@ -42,6 +42,8 @@ pub struct PolygonRun {
     pub path: Vec<Point>,
     /// Every scan: where, and the region seen.
     pub scans: Vec<PolygonObservation>,
+    /// When each scan began (seconds since the start, under the cost model).
+    pub scan_times: Vec<f64>,
     /// Whether an observer stopped the run before the strategy was done.
     pub interrupted: bool,
 }
@@ -62,6 +64,8 @@ pub fn run(
     let mut at = start;
     let mut path = vec![start];
     let mut scans = Vec::new();
+    let mut scan_times = Vec::new();
+    let mut elapsed = 0.0;
     let mut feedback = PolygonFeedback::Start(start);
     for _ in 0..LIMIT {
         match strategy.act(&feedback) {
@@ -76,11 +80,12 @@ pub fn run(
                 let metres = (to[0] - at[0]).hypot(to[1] - at[1]);
                 tally.moves += 1;
                 tally.distance += metres;
+                elapsed += cost.move_time + metres / cost.speed;
                 at = to;
                 path.push(to);
                 feedback = PolygonFeedback::Arrived;
                 if observer.on_move(&to, metres).is_break() {
-                    return Ok(finish(observer, cost, tally, path, scans, true));
+                    return Ok(finish(observer, cost, tally, path, (scans, scan_times), true));
                 }
             }
             Action::Scan => {
@@ -90,14 +95,18 @@ pub fn run(
                     to: at,
                 })?;
                 tally.scans += 1;
+                scan_times.push(elapsed);
+                elapsed += cost.scan_time;
                 let stop = observer.on_scan(&at, &obs).is_break();
                 scans.push(obs.clone());
                 feedback = PolygonFeedback::Scanned(obs);
                 if stop {
-                    return Ok(finish(observer, cost, tally, path, scans, true));
+                    return Ok(finish(observer, cost, tally, path, (scans, scan_times), true));
                 }
             }
-            Action::Done => return Ok(finish(observer, cost, tally, path, scans, false)),
+            Action::Done => {
+                return Ok(finish(observer, cost, tally, path, (scans, scan_times), false));
+            }
         }
     }
     Err(PolygonSimError::TooLong(strategy.name().into(), LIMIT))
@@ -108,9 +117,9 @@ fn finish(
     cost: &CostModel,
     tally: Tally,
     path: Vec<Point>,
-    scans: Vec<PolygonObservation>,
+    (scans, scan_times): (Vec<PolygonObservation>, Vec<f64>),
     interrupted: bool,
 ) -> PolygonRun {
     observer.on_finish(&tally);
-    PolygonRun { tally, time: cost.price(&tally), path, scans, interrupted }
+    PolygonRun { tally, time: cost.price(&tally), path, scans, scan_times, interrupted }
 }

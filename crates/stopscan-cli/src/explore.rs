@@ -1,0 +1,176 @@
+//! `stopscan explore`, `stopscan generate` and the main job.
+
+use std::io::Write;
+use std::path::{Path, PathBuf};
+
+use anyhow::{Context, bail};
+use stopscan::generate::{self, Instance};
+use stopscan::geometry::Domain;
+use stopscan::io::run_record::RunRecord;
+use stopscan::kernel::Point;
+use stopscan::protocol::CostModel;
+use stopscan::sim::NoObserver;
+use stopscan::strategy::polygon::DepthFirst;
+use stopscan::world::polygon::PolygonWorld;
+
+use crate::cli::{ExploreArgs, Family, Format, GenerateArgs, Global};
+use crate::output::{Table, num, write_json_atomic};
+use crate::visibility::parse_point;
+
+/// The built-in office floor (`stopscan generate office --size 6 --desks 16`), embedded.
+const OFFICE: &str = include_str!("../../../fixtures/office.geojson");
+
+/// Strategies `explore` knows.
+const STRATEGIES: &[&str] = &["depth_first"];
+
+struct Outcome {
+    record: RunRecord,
+    svg: String,
+}
+
+fn explore(
+    name: &str,
+    domain: &Domain,
+    start: Point,
+    strategy: &str,
+    cost: CostModel,
+    seed: u64,
+) -> anyhow::Result<Outcome> {
+    if !STRATEGIES.contains(&strategy) {
+        bail!("unknown strategy {strategy:?}; use one of: {}", STRATEGIES.join(", "));
+    }
+    let world = PolygonWorld::new(domain.clone())?;
+    if world.scan(start).is_err() {
+        bail!("the start ({}, {}) is outside the free space", start[0], start[1]);
+    }
+    let run =
+        stopscan::sim::polygon::run(&world, start, &cost, &mut DepthFirst::new(), &mut NoObserver)?;
+    let regions: Vec<_> = run.scans.iter().map(|s| s.region.clone()).collect();
+    let svg = stopscan::render::exploration_svg(domain, &regions, &run.path);
+    Ok(Outcome { record: RunRecord::polygon(name, domain, strategy, &cost, &run, seed), svg })
+}
+
+fn summary(w: &mut dyn Write, o: &RunRecord) -> std::io::Result<()> {
+    let m = &o.metrics;
+    let e = &o.environment;
+    writeln!(
+        w,
+        "{}: {} vertices, {} holes, r = {} reflex, free area {:.2} m²; strategy {}",
+        e.name, e.vertices, e.holes, e.reflex_vertices, e.free_area, o.strategy.name
+    )?;
+    let mut t = Table::new(&["quantity", "value"]);
+    let rows: [(&str, String); 12] = [
+        ("scans", m.scans.to_string()),
+        ("moves", m.moves.to_string()),
+        ("distance (m)", num(Some(m.distance), 3)),
+        ("scan time (s)", num(Some(m.scan_time_total), 3)),
+        ("move time (s)", num(Some(m.move_time_total), 3)),
+        ("travel time (s)", num(Some(m.travel_time_total), 3)),
+        ("total time (s)", num(Some(m.time), 3)),
+        ("coverage", num(Some(m.coverage), 9)),
+        ("bound r + 1 (paper)", o.bounds.scans_upper.to_string()),
+        ("lower bound on the optimum", o.bounds.scans_lower.to_string()),
+        ("scans / lower bound", num(Some(m.scans as f64 / o.bounds.scans_lower as f64), 2)),
+        (
+            "competitive ratio (optimum known)",
+            o.bounds.competitive_ratio.map_or("not computed".into(), |r| num(Some(r), 3)),
+        ),
+    ];
+    for (k, v) in rows {
+        t.row(vec![k.into(), v]);
+    }
+    t.write(w)
+}
+
+fn cost_of(scan: f64, mv: f64, speed: f64) -> anyhow::Result<CostModel> {
+    Ok(CostModel::new(scan, mv, speed)?)
+}
+
+fn finish(
+    g: &Global,
+    o: &Outcome,
+    json_path: &Path,
+    svg_path: Option<&Path>,
+) -> anyhow::Result<()> {
+    write_json_atomic(json_path, &o.record)?;
+    if let Some(p) = svg_path {
+        if let Some(dir) = p.parent().filter(|d| !d.as_os_str().is_empty()) {
+            std::fs::create_dir_all(dir)?;
+        }
+        std::fs::write(p, &o.svg).with_context(|| format!("cannot write {}", p.display()))?;
+    }
+    let stdout = std::io::stdout();
+    let mut w = stdout.lock();
+    if g.format == Format::Json {
+        writeln!(w, "{}", serde_json::to_string_pretty(&o.record)?)?;
+        return Ok(());
+    }
+    summary(&mut w, &o.record)?;
+    writeln!(w, "wrote {}", json_path.display())?;
+    if let Some(p) = svg_path {
+        writeln!(w, "wrote {}", p.display())?;
+    }
+    Ok(())
+}
+
+pub(crate) fn main_job(g: &Global) -> anyhow::Result<()> {
+    let env = stopscan::io::text_formats::parse_geojson(OFFICE, "built-in office floor")?;
+    let start = env.queries.first().copied().context("the built-in office has a start")?;
+    let o = explore(
+        "office (built-in)",
+        &env.domain,
+        start,
+        "depth_first",
+        CostModel::default(),
+        g.seed,
+    )?;
+    let dir = g.out.clone().unwrap_or_else(|| PathBuf::from("stopscan-out"));
+    std::fs::create_dir_all(&dir).with_context(|| format!("cannot create {}", dir.display()))?;
+    finish(g, &o, &dir.join("run.json"), Some(&dir.join("scene.svg")))
+}
+
+pub(crate) fn run(a: &ExploreArgs, g: &Global) -> anyhow::Result<()> {
+    let env = stopscan::io::read_environment(&a.env)?;
+    let start = match &a.start {
+        Some(s) => parse_point(s)?,
+        None => env
+            .queries
+            .first()
+            .copied()
+            .with_context(|| format!("{} names no start; give --start X,Y", a.env.display()))?,
+    };
+    let name = a.env.file_stem().and_then(|s| s.to_str()).unwrap_or("environment");
+    let o = explore(
+        name,
+        &env.domain,
+        start,
+        &a.strategy,
+        cost_of(a.scan_time, a.move_time, a.speed)?,
+        g.seed,
+    )?;
+    let out = g.out.clone().unwrap_or_else(|| PathBuf::from("run.json"));
+    finish(g, &o, &out, a.svg.as_deref())
+}
+
+pub(crate) fn generate(a: &GenerateArgs, g: &Global) -> anyhow::Result<()> {
+    let n = a.size;
+    let inst: Instance = match a.family {
+        Family::Spiral => generate::spiral(n)?,
+        Family::Star => generate::star(n)?,
+        Family::Comb => generate::comb(n)?,
+        Family::Office => generate::office(n, a.desks, g.seed)?,
+        Family::Forest => generate::pillar_forest(30.0, 20.0, n, g.seed)?,
+    };
+    let geo = stopscan::io::text_formats::to_geojson(&inst.domain, Some(inst.start));
+    write_json_atomic(&a.output, &geo)?;
+    let d = &inst.domain;
+    writeln!(
+        std::io::stdout().lock(),
+        "{}: {} vertices, {} holes, {} reflex",
+        a.output.display(),
+        d.vertex_count(),
+        d.holes().len(),
+        d.reflex_vertices().len()
+    )?;
+    Ok(())
+}

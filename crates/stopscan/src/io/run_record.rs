@@ -1,0 +1,174 @@
+//! The run record of DESIGN.md (`--out run.json`): one JSON object per run, whose field names
+//! are the contract.
+
+use serde::{Deserialize, Serialize};
+
+use crate::algorithm::region::Region;
+use crate::geometry::Domain;
+use crate::kernel::Point;
+use crate::protocol::CostModel;
+use crate::sim::polygon::PolygonRun;
+
+/// `"environment"`.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct EnvironmentInfo {
+    /// Name (file stem or family).
+    pub name: String,
+    /// Vertices.
+    pub vertices: usize,
+    /// Holes.
+    pub holes: usize,
+    /// Reflex vertices r.
+    pub reflex_vertices: usize,
+    /// Free area, m².
+    pub free_area: f64,
+}
+
+/// `"strategy"`.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct StrategyInfo {
+    /// Registry name.
+    pub name: String,
+    /// Parameters.
+    pub params: serde_json::Value,
+}
+
+/// `"sensor"`.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct SensorInfo {
+    /// Range limit R, or null.
+    pub range: Option<f64>,
+}
+
+/// One scan in a robot's record.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct ScanRecord {
+    /// Where.
+    pub at: Point,
+    /// When it began, seconds.
+    pub time: f64,
+}
+
+/// `"robots"[i]`.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct RobotRecord {
+    /// Robot id.
+    pub id: usize,
+    /// The polyline driven.
+    pub path: Vec<Point>,
+    /// Its scans.
+    pub scans: Vec<ScanRecord>,
+}
+
+/// `"metrics"`.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct Metrics {
+    /// Scans.
+    pub scans: u64,
+    /// Moves.
+    pub moves: u64,
+    /// Metres driven.
+    pub distance: f64,
+    /// Total time, s.
+    pub time: f64,
+    /// `scan_time · scans`.
+    pub scan_time_total: f64,
+    /// `move_time · moves`.
+    pub move_time_total: f64,
+    /// `distance / speed`.
+    pub travel_time_total: f64,
+    /// Area of the union of the regions seen, m².
+    pub covered_area: f64,
+    /// `covered_area / free_area`.
+    pub coverage: f64,
+}
+
+/// `"bounds"`.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct Bounds {
+    /// The paper's r + 1 (full visibility).
+    pub scans_upper: usize,
+    /// A lower bound on the optimum's scans.
+    pub scans_lower: usize,
+    /// Scans divided by the optimum, when the optimum is known (null otherwise).
+    pub competitive_ratio: Option<f64>,
+}
+
+/// A whole run record.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct RunRecord {
+    /// `"stopscan-run/1"`.
+    pub format: String,
+    /// The environment.
+    pub environment: EnvironmentInfo,
+    /// The strategy.
+    pub strategy: StrategyInfo,
+    /// The cost model.
+    pub cost_model: CostModel,
+    /// The sensor.
+    pub sensor: SensorInfo,
+    /// One record per robot.
+    pub robots: Vec<RobotRecord>,
+    /// The metrics.
+    pub metrics: Metrics,
+    /// Bounds.
+    pub bounds: Bounds,
+    /// The seed.
+    pub seed: u64,
+    /// The library version.
+    pub stopscan_version: String,
+}
+
+impl RunRecord {
+    /// The record of a single-robot polygon run.
+    pub fn polygon(
+        name: &str,
+        domain: &Domain,
+        strategy: &str,
+        cost: &CostModel,
+        run: &PolygonRun,
+        seed: u64,
+    ) -> Self {
+        let polys: Vec<Vec<Point>> = run.scans.iter().map(|s| s.region.polygon.clone()).collect();
+        let covered = Region::union_all(&polys).area();
+        let free = domain.area();
+        let r = domain.reflex_vertices().len();
+        Self {
+            format: "stopscan-run/1".into(),
+            environment: EnvironmentInfo {
+                name: name.into(),
+                vertices: domain.vertex_count(),
+                holes: domain.holes().len(),
+                reflex_vertices: r,
+                free_area: free,
+            },
+            strategy: StrategyInfo { name: strategy.into(), params: serde_json::json!({}) },
+            cost_model: *cost,
+            sensor: SensorInfo { range: None },
+            robots: vec![RobotRecord {
+                id: 0,
+                path: run.path.clone(),
+                scans: run
+                    .scans
+                    .iter()
+                    .zip(&run.scan_times)
+                    .map(|(s, &t)| ScanRecord { at: s.at, time: t })
+                    .collect(),
+            }],
+            metrics: Metrics {
+                scans: run.tally.scans,
+                moves: run.tally.moves,
+                distance: run.tally.distance,
+                time: run.time.total(),
+                scan_time_total: run.time.scan_time_total,
+                move_time_total: run.time.move_time_total,
+                travel_time_total: run.time.travel_time_total,
+                covered_area: covered,
+                coverage: covered / free,
+            },
+            bounds: Bounds { scans_upper: r + 1, scans_lower: 1, competitive_ratio: None },
+            seed,
+            stopscan_version: crate::VERSION.into(),
+        }
+    }
+}
