@@ -362,7 +362,8 @@ pub(crate) struct VisibilityArgs {
 #[derive(Debug, Args)]
 pub(crate) struct ReproduceArgs {
     /// corner-table-2, corner-table-3, corner-table-4, corner-fig-4, corner-fig-6,
-    /// corner-fig-7, corner-fig-8, circle-table-1, circle-fig-7, or all.
+    /// corner-fig-7, corner-fig-8, circle-table-1, circle-fig-7, views-spiral, views-star,
+    /// or all.
     pub(crate) id: String,
     /// Monte Carlo samples where the paper used sampling.
     #[arg(long, default_value_t = 1000)]

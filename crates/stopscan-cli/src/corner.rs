@@ -393,10 +393,11 @@ struct ReproduceOut<'a> {
 }
 
 pub(crate) fn reproduce(a: &cli::ReproduceArgs, g: &Global) -> anyhow::Result<()> {
-    let ids: Vec<&str> = if a.id == "all" { exp::IDS.to_vec() } else { vec![a.id.as_str()] };
+    let ids: Vec<&str> =
+        if a.id == "all" { stopscan::experiment::ids() } else { vec![a.id.as_str()] };
     let mut outs = Vec::new();
     for id in ids {
-        let r = exp::reproduce(id, a.samples, g.seed)?;
+        let r = stopscan::experiment::reproduce(id, a.samples, g.seed)?;
         let mut files = Vec::new();
         if let Some(dir) = picture_dir(g)? {
             for (name, chart) in &r.charts {

@@ -260,12 +260,12 @@ fn corner_simulate_is_seeded() {
 #[test]
 fn reproduce_every_id() {
     let dir = temp("repro");
-    let ids = stopscan::experiment::corner::IDS;
+    let ids = stopscan::experiment::ids();
     // The list.
     for id in "corner-table-2 corner-table-3 corner-table-4 corner-fig-7 corner-fig-8 circle-table-1 circle-fig-7".split(' ') {
         assert!(ids.contains(&id), "{id}");
     }
-    for &id in ids {
+    for &id in &ids {
         let v = json(&["reproduce", id, "--out", dir.to_str().unwrap()]);
         assert_eq!(v["id"], id);
         assert!(!v["model"].as_array().unwrap().is_empty());

@@ -1,6 +1,26 @@
 //! Sweeps, Monte Carlo and paper reproductions: seeded, parallel, deterministic.
 
 pub mod corner;
+pub mod polygon;
+
+/// Every reproduction identifier, of all families.
+pub fn ids() -> Vec<&'static str> {
+    corner::IDS.iter().chain(polygon::IDS).copied().collect()
+}
+
+/// Runs any reproduction by identifier.
+///
+/// # Errors
+/// [`ExperimentError::UnknownId`] for an unknown identifier; model errors otherwise.
+pub fn reproduce(id: &str, samples: usize, seed: u64) -> Result<Reproduction, ExperimentError> {
+    if polygon::IDS.contains(&id) {
+        return polygon::reproduce(id);
+    }
+    corner::reproduce(id, samples, seed).map_err(|e| match e {
+        ExperimentError::UnknownId(i, _) => ExperimentError::UnknownId(i, ids().join(", ")),
+        other => other,
+    })
+}
 
 use serde::{Deserialize, Serialize};
 
