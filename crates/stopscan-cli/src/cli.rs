@@ -268,7 +268,8 @@ pub(crate) struct ExploreArgs {
     /// The environment (GeoJSON with a "start" property, WKT, .pol, ROS map, benchmark format).
     #[arg(long)]
     pub(crate) env: PathBuf,
-    /// The strategy (see --help): depth_first is the paper's algorithm.
+    /// The strategy: depth_first (the paper's algorithm, at most r + 1 scans) or
+    /// nearest_frontier (Yamauchi-style frontiers, windows as frontiers).
     #[arg(long, default_value = "depth_first")]
     pub(crate) strategy: String,
     /// The start "X,Y" (default: the file's start, or its first query point).

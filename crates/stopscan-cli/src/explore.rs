@@ -10,7 +10,6 @@ use stopscan::io::run_record::RunRecord;
 use stopscan::kernel::Point;
 use stopscan::protocol::CostModel;
 use stopscan::sim::NoObserver;
-use stopscan::strategy::polygon::DepthFirst;
 use stopscan::world::polygon::PolygonWorld;
 
 use crate::cli::{ExploreArgs, Family, Format, GenerateArgs, Global};
@@ -19,9 +18,6 @@ use crate::visibility::parse_point;
 
 /// The built-in office floor (`stopscan generate office --size 6 --desks 16`), embedded.
 const OFFICE: &str = include_str!("../../../fixtures/office.geojson");
-
-/// Strategies `explore` knows.
-const STRATEGIES: &[&str] = &["depth_first"];
 
 struct Outcome {
     record: RunRecord,
@@ -36,15 +32,15 @@ fn explore(
     cost: CostModel,
     seed: u64,
 ) -> anyhow::Result<Outcome> {
-    if !STRATEGIES.contains(&strategy) {
-        bail!("unknown strategy {strategy:?}; use one of: {}", STRATEGIES.join(", "));
-    }
+    let Some(mut strat) = stopscan::strategy::polygon::by_name(strategy) else {
+        let names: Vec<&str> = stopscan::strategy::polygon::REGISTRY.iter().map(|r| r.0).collect();
+        bail!("unknown strategy {strategy:?}; use one of: {}", names.join(", "));
+    };
     let world = PolygonWorld::new(domain.clone())?;
     if world.scan(start).is_err() {
         bail!("the start ({}, {}) is outside the free space", start[0], start[1]);
     }
-    let run =
-        stopscan::sim::polygon::run(&world, start, &cost, &mut DepthFirst::new(), &mut NoObserver)?;
+    let run = stopscan::sim::polygon::run(&world, start, &cost, strat.as_mut(), &mut NoObserver)?;
     let regions: Vec<_> = run.scans.iter().map(|s| s.region.clone()).collect();
     let svg = stopscan::render::exploration_svg(domain, &regions, &run.path);
     Ok(Outcome { record: RunRecord::polygon(name, domain, strategy, &cost, &run, seed), svg })

@@ -9,7 +9,7 @@ use stopscan::kernel::{RingSide, ring_side};
 use stopscan::protocol::CostModel;
 use stopscan::sim::NoObserver;
 use stopscan::sim::polygon::{PolygonRun, run};
-use stopscan::strategy::polygon::DepthFirst;
+use stopscan::strategy::polygon::{DepthFirst, by_name};
 use stopscan::world::polygon::PolygonWorld;
 
 fn explore(inst: &Instance) -> (PolygonWorld, PolygonRun) {
@@ -88,4 +88,28 @@ fn a_thousand_vertex_office_floor() {
     assert!(inst.domain.vertex_count() >= 1000);
     let run = check(&inst, "office 1000");
     assert!(run.tally.scans >= 80, "every room needs a view: {}", run.tally.scans);
+}
+
+#[test]
+fn nearest_frontier_covers_everything_with_legal_moves() {
+    let cases = vec![
+        spiral(6).unwrap(),
+        star(7).unwrap(),
+        comb(4).unwrap(),
+        office(4, 8, 2).unwrap(),
+        pillar_forest(30.0, 20.0, 9, 5).unwrap(),
+    ];
+    for inst in cases {
+        let world = PolygonWorld::new(inst.domain.clone()).unwrap();
+        let mut s = by_name("nearest_frontier").unwrap();
+        let run =
+            run(&world, inst.start, &CostModel::default(), s.as_mut(), &mut NoObserver).unwrap();
+        let polys: Vec<_> = run.scans.iter().map(|s| s.region.polygon.clone()).collect();
+        let covered = Region::union_all(&polys).area();
+        let d = world.domain();
+        assert!((covered - d.area()).abs() <= 1e-7 * d.area(), "covered {covered} of {}", d.area());
+        for w in run.path.windows(2) {
+            assert!(world.can_move(w[0], w[1]));
+        }
+    }
 }

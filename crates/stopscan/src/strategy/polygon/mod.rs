@@ -3,8 +3,11 @@
 //! visibility regions.
 
 mod depth_first;
+mod known;
+mod nearest_frontier;
 
 pub use depth_first::DepthFirst;
+pub use nearest_frontier::NearestFrontier;
 
 use serde::{Deserialize, Serialize};
 
@@ -22,6 +25,21 @@ pub enum PolygonFeedback {
     Arrived,
     /// The scan it asked for.
     Scanned(PolygonObservation),
+}
+
+/// `(name, summary)` of every polygon strategy, in display order.
+pub const REGISTRY: &[(&str, &str)] = &[
+    ("depth_first", "the paper's algorithm: depth-first over windows, at most r + 1 scans"),
+    ("nearest_frontier", "frontier-based (Yamauchi): the nearest unexplored window by travel"),
+];
+
+/// A fresh strategy by registry name.
+pub fn by_name(name: &str) -> Option<Box<dyn PolygonStrategy + Send>> {
+    match name {
+        "depth_first" => Some(Box::new(DepthFirst::new())),
+        "nearest_frontier" => Some(Box::new(NearestFrontier::new())),
+        _ => None,
+    }
 }
 
 /// An online polygon-exploration strategy.

@@ -1,0 +1,75 @@
+//! Nearest-frontier exploration (Yamauchi's frontier-based exploration, with the windows of
+//! the regions seen as frontiers): after each scan, go to the closest point from which an
+//! unexplored window can be looked through, travelling along the tree of moves, and scan.
+//!
+//! It shares the window bookkeeping of the paper's algorithm; only the choice of the next
+//! window differs (the nearest by travel distance instead of depth first), so the two can be
+//! compared on scans and on distance under one cost model.
+
+use serde::{Deserialize, Serialize};
+
+use super::known::Known;
+use super::{PolygonFeedback, PolygonStrategy};
+use crate::kernel::Point;
+use crate::protocol::Action;
+
+/// Nearest-frontier exploration. Its whole state is serialisable.
+#[derive(Debug, Clone, Default, PartialEq, Serialize, Deserialize)]
+pub struct NearestFrontier {
+    known: Known,
+    current: Option<usize>,
+    target_parent: Option<usize>,
+    route: Vec<Point>,
+}
+
+impl NearestFrontier {
+    /// A fresh strategy.
+    pub fn new() -> Self {
+        Self::default()
+    }
+
+    fn plan(&mut self) -> Action<Point> {
+        let Some(cur) = self.current else { return Action::Done };
+        let mut best: Option<(f64, usize, Point, Vec<Point>)> = None;
+        for v in 0..self.known.views.len() {
+            if let Some(z) = self.known.first_unexplored(v) {
+                let (mut pts, len) = self.known.route(cur, v);
+                let at = self.known.views[v].at;
+                let total = len + (z[0] - at[0]).hypot(z[1] - at[1]);
+                if best.as_ref().is_none_or(|b| total < b.0) {
+                    pts.push(z);
+                    best = Some((total, v, z, pts));
+                }
+            }
+        }
+        let Some((_, v, _, pts)) = best else { return Action::Done };
+        self.target_parent = Some(v);
+        self.route = pts.into_iter().rev().collect();
+        self.next_move()
+    }
+
+    fn next_move(&mut self) -> Action<Point> {
+        match self.route.pop() {
+            Some(p) => Action::MoveTo { to: p },
+            None => Action::Scan,
+        }
+    }
+}
+
+impl PolygonStrategy for NearestFrontier {
+    fn name(&self) -> &'static str {
+        "nearest_frontier"
+    }
+
+    fn act(&mut self, feedback: &PolygonFeedback) -> Action<Point> {
+        match feedback {
+            PolygonFeedback::Start(_) => Action::Scan,
+            PolygonFeedback::Arrived => self.next_move(),
+            PolygonFeedback::Scanned(obs) => {
+                let v = self.known.add(obs, self.target_parent);
+                self.current = Some(v);
+                self.plan()
+            }
+        }
+    }
+}
