@@ -37,8 +37,11 @@ pub(crate) fn run(a: &BenchArgs, g: &Global) -> anyhow::Result<()> {
     if a.target == BenchTarget::Visibility {
         return crate::visibility::bench(a, g);
     }
+    if a.target == BenchTarget::Explore {
+        return bench_explore(a, g);
+    }
     let (name, n, secs, ops) = match a.target {
-        BenchTarget::Visibility => unreachable!("handled above"),
+        BenchTarget::Visibility | BenchTarget::Explore => unreachable!("handled above"),
         BenchTarget::Mdp => {
             let general = a.solver == SolverArg::General;
             let n = a.n.unwrap_or(if general { 180 } else { 900 });
@@ -99,5 +102,45 @@ pub(crate) fn run(a: &BenchArgs, g: &Global) -> anyhow::Result<()> {
         }
     };
     let value = json!({"name": name, "n": n, "seconds_median": secs, "per_second": ops / secs, "repeat": a.repeat});
+    emit(g, &value, true, |w| writeln!(w, "{}", serde_json::to_string(&value).unwrap_or_default()))
+}
+
+/// `bench explore`: n generated office floors (seeded sizes and desks), all explored in
+/// parallel; reports the runs that fail a check.
+fn bench_explore(a: &BenchArgs, g: &Global) -> anyhow::Result<()> {
+    // n generated office floors (seeded sizes and desks), all explored in parallel.
+    let n = a.n.unwrap_or(1000);
+    let mut rng = rand_chacha::ChaCha8Rng::seed_from_u64(g.seed);
+    let inputs: Vec<_> = (0..n)
+        .map(|i| {
+            let rooms = rng.random_range(2..12);
+            let desks = rng.random_range(0..3 * rooms);
+            let inst = stopscan::generate::office(rooms, desks, g.seed.wrapping_add(i as u64))?;
+            Ok((format!("office-{i}"), inst.domain, inst.start))
+        })
+        .collect::<anyhow::Result<_>>()?;
+    let t = Instant::now();
+    let rows = stopscan::experiment::polygon::sweep(
+        &inputs,
+        &["depth_first"],
+        &stopscan::protocol::CostModel::default(),
+        &|| {},
+    );
+    let secs = t.elapsed().as_secs_f64();
+    let failing: Vec<_> = rows
+        .iter()
+        .filter(|r| !r.error.is_empty() || !r.within_bound || (r.coverage - 1.0).abs() > 1e-7)
+        .collect();
+    let details: Vec<_> = failing
+        .iter()
+        .take(20)
+        .map(|r| json!({"environment": r.environment, "scans": r.scans, "scans_upper": r.scans_upper, "coverage": r.coverage, "error": r.error}))
+        .collect();
+    let value = json!({
+        "name": "explore-office-sweep", "n": n, "seconds_median": secs, "per_second": n as f64 / secs,
+        "threads": rayon::current_num_threads(),
+        "checks": "no error, scans <= r + 1, |coverage - 1| <= 1e-7",
+        "runs_failing_checks": failing.len(), "failing": details,
+    });
     emit(g, &value, true, |w| writeln!(w, "{}", serde_json::to_string(&value).unwrap_or_default()))
 }

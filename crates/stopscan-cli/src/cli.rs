@@ -265,14 +265,16 @@ pub(crate) struct SimulateArgs {
 
 #[derive(Debug, Args)]
 pub(crate) struct ExploreArgs {
-    /// The environment (GeoJSON with a "start" property, WKT, .pol, ROS map, benchmark format).
+    /// The environment (GeoJSON with a "start" property, WKT, .pol, ROS map, benchmark format),
+    /// or a folder of them: a sweep in parallel that writes CSV (to --out, default sweep.csv).
     #[arg(long)]
     pub(crate) env: PathBuf,
     /// The strategy: depth_first (the paper's algorithm, at most r + 1 scans) or
-    /// nearest_frontier (Yamauchi-style frontiers, windows as frontiers).
+    /// nearest_frontier (Yamauchi-style frontiers, windows as frontiers); `all` in a sweep.
     #[arg(long, default_value = "depth_first")]
     pub(crate) strategy: String,
-    /// The start "X,Y" (default: the file's start, or its first query point).
+    /// The start "X,Y" (default: the file's start, its first query point, or a point inside the
+    /// first triangle of its triangulation).
     #[arg(long, allow_hyphen_values = true)]
     pub(crate) start: Option<String>,
     /// Seconds per scan.
@@ -363,8 +365,8 @@ pub(crate) struct VisibilityArgs {
 #[derive(Debug, Args)]
 pub(crate) struct ReproduceArgs {
     /// corner-table-2, corner-table-3, corner-table-4, corner-fig-4, corner-fig-6,
-    /// corner-fig-7, corner-fig-8, circle-table-1, circle-fig-7, views-spiral, views-star,
-    /// or all.
+    /// corner-fig-7, corner-fig-8, circle-table-1, circle-fig-7, views-spiral, views-star, or
+    /// all.
     pub(crate) id: String,
     /// Monte Carlo samples where the paper used sampling.
     #[arg(long, default_value_t = 1000)]
@@ -381,6 +383,8 @@ pub(crate) enum BenchTarget {
     Ratio,
     /// Visibility queries on an environment (needs --env).
     Visibility,
+    /// Exploration of --n generated office floors in parallel (the paper's algorithm).
+    Explore,
 }
 
 #[derive(Debug, Args)]

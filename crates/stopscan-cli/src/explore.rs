@@ -125,15 +125,93 @@ pub(crate) fn main_job(g: &Global) -> anyhow::Result<()> {
     finish(g, &o, &dir.join("run.json"), Some(&dir.join("scene.svg")))
 }
 
+fn sweep_dir(a: &ExploreArgs, g: &Global) -> anyhow::Result<()> {
+    use indicatif::{ProgressBar, ProgressStyle};
+    let mut files: Vec<PathBuf> = std::fs::read_dir(&a.env)
+        .with_context(|| format!("cannot read {}", a.env.display()))?
+        .flatten()
+        .map(|e| e.path())
+        .filter(|p| {
+            matches!(
+                p.extension().and_then(|x| x.to_str()),
+                Some("geojson" | "json" | "wkt" | "pol" | "yaml" | "yml" | "txt")
+            )
+        })
+        .collect();
+    files.sort();
+    if files.is_empty() {
+        bail!("{} holds no environment files (.geojson, .wkt, .pol, .yaml, .txt)", a.env.display());
+    }
+    let mut inputs = Vec::new();
+    for f in &files {
+        let env = stopscan::io::read_environment(f)?;
+        let world = PolygonWorld::new(env.domain.clone())?;
+        let start = env.queries.first().copied().unwrap_or_else(|| world.interior_point());
+        let name = f.file_name().and_then(|n| n.to_str()).unwrap_or("?").to_string();
+        inputs.push((name, env.domain, start));
+    }
+    let all: Vec<&str> = stopscan::strategy::polygon::REGISTRY.iter().map(|r| r.0).collect();
+    let strategies: Vec<&str> = if a.strategy == "all" {
+        all
+    } else if all.contains(&a.strategy.as_str()) {
+        vec![a.strategy.as_str()]
+    } else {
+        bail!("unknown strategy {:?}; use one of: {}, or all", a.strategy, all.join(", "));
+    };
+    let bar = ProgressBar::new((inputs.len() * strategies.len()) as u64);
+    bar.set_style(
+        ProgressStyle::with_template("{bar:40} {pos}/{len} runs {elapsed}")
+            .unwrap_or_else(|_| ProgressStyle::default_bar()),
+    );
+    let cost = cost_of(a.scan_time, a.move_time, a.speed)?;
+    let rows = stopscan::experiment::polygon::sweep(&inputs, &strategies, &cost, &|| bar.inc(1));
+    bar.finish_and_clear();
+    let out = g.out.clone().unwrap_or_else(|| PathBuf::from("sweep.csv"));
+    let tmp = out.with_extension("csv.tmp");
+    {
+        let mut w = csv::Writer::from_path(&tmp)
+            .with_context(|| format!("cannot write {}", tmp.display()))?;
+        for r in &rows {
+            w.serialize(r)?;
+        }
+        w.flush()?;
+    }
+    std::fs::rename(&tmp, &out)?;
+    let stdout = std::io::stdout();
+    let mut w = stdout.lock();
+    let mut t =
+        Table::new(&["environment", "strategy", "r", "scans", "≤ r + 1", "distance", "coverage"]);
+    for r in &rows {
+        t.row(vec![
+            r.environment.clone(),
+            r.strategy.clone(),
+            r.reflex_vertices.to_string(),
+            r.scans.to_string(),
+            if r.error.is_empty() {
+                r.within_bound.to_string()
+            } else {
+                format!("error: {}", r.error)
+            },
+            num(Some(r.distance), 2),
+            num(Some(r.coverage), 9),
+        ]);
+    }
+    t.write(&mut w)?;
+    writeln!(w, "wrote {}", out.display())?;
+    Ok(())
+}
+
 pub(crate) fn run(a: &ExploreArgs, g: &Global) -> anyhow::Result<()> {
+    if a.env.is_dir() {
+        return sweep_dir(a, g);
+    }
     let env = stopscan::io::read_environment(&a.env)?;
     let start = match &a.start {
         Some(s) => parse_point(s)?,
-        None => env
-            .queries
-            .first()
-            .copied()
-            .with_context(|| format!("{} names no start; give --start X,Y", a.env.display()))?,
+        None => match env.queries.first() {
+            Some(&p) => p,
+            None => PolygonWorld::new(env.domain.clone())?.interior_point(),
+        },
     };
     let name = a.env.file_stem().and_then(|s| s.to_str()).unwrap_or("environment");
     let o = explore(

@@ -109,6 +109,39 @@ fn explore_and_generate() {
     assert_eq!(v["cost_model"]["scan_time"], 2.0);
     assert!((f(&v["metrics"], "scan_time_total") - 12.0).abs() < 1e-12);
     assert!(dir.join("s.svg").exists() && out.exists());
+    // A folder: a sweep with every strategy, as CSV.
+    let csv_path = dir.join("sweep.csv");
+    let g2 = stopscan(&[
+        "generate",
+        "comb",
+        "--size",
+        "3",
+        "-o",
+        dir.join("comb.geojson").to_str().unwrap(),
+    ]);
+    assert!(g2.status.success());
+    std::fs::remove_file(dir.join("s.svg")).unwrap();
+    std::fs::remove_file(&out).unwrap();
+    let sweep = stopscan(&[
+        "explore",
+        "--env",
+        dir.to_str().unwrap(),
+        "--strategy",
+        "all",
+        "--out",
+        csv_path.to_str().unwrap(),
+    ]);
+    assert!(sweep.status.success(), "{}", String::from_utf8_lossy(&sweep.stderr));
+    let csv_text = std::fs::read_to_string(&csv_path).unwrap();
+    assert_eq!(
+        csv_text.lines().count(),
+        1 + 2 * 2,
+        "header + 2 environments × 2 strategies:\n{csv_text}"
+    );
+    assert!(csv_text.lines().next().unwrap().contains("scans_upper"));
+    let b = json(&["bench", "explore", "--n", "20"]);
+    assert_eq!(b["runs_failing_checks"], 0, "{b}");
+    assert_eq!(b["n"], 20);
     let bad = stopscan(&["explore", "--env", env.to_str().unwrap(), "--strategy", "teleport"]);
     assert_eq!(bad.status.code(), Some(2));
     assert!(String::from_utf8_lossy(&bad.stderr).contains("unknown strategy"));

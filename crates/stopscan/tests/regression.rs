@@ -19,3 +19,25 @@ fn fuzz_loaders_3db3be0b_sliver_orientation() {
     let v = Visibility::new(e.domain.clone()).unwrap();
     assert!(v.query([4.5, 0.0]).is_ok(), "a point on the boundary edge");
 }
+
+/// `stopscan bench explore` hung on its 586th generated floor, office(6, 14, 585): a window's
+/// test point lay where no scan could see it (a hair inside a desk the window grazes), so the
+/// same viewpoint was scanned forever. A sample is now handled once a scan was taken for it.
+#[test]
+fn exploration_office_585_grazing_window_terminates() {
+    use stopscan::protocol::CostModel;
+    use stopscan::sim::{NoObserver, polygon::run};
+    use stopscan::strategy::polygon::by_name;
+    let inst = stopscan::generate::office(6, 14, 585).unwrap();
+    let world = stopscan::world::polygon::PolygonWorld::new(inst.domain.clone()).unwrap();
+    for name in ["depth_first", "nearest_frontier"] {
+        let mut s = by_name(name).unwrap();
+        let r =
+            run(&world, inst.start, &CostModel::default(), s.as_mut(), &mut NoObserver).unwrap();
+        assert!(
+            r.tally.scans <= inst.domain.reflex_vertices().len() as u64 + 1
+                || name != "depth_first"
+        );
+        assert!(r.tally.scans < 200, "{name}: {} scans", r.tally.scans);
+    }
+}

@@ -103,3 +103,119 @@ fn views_star() -> Result<Reproduction, ExperimentError> {
         images: vec![],
     })
 }
+
+/// One row of an exploration sweep (the CSV's columns; metric names as in the run record).
+#[derive(Debug, Clone, PartialEq, serde::Serialize, serde::Deserialize)]
+pub struct SweepRow {
+    /// Environment name.
+    pub environment: String,
+    /// Strategy name.
+    pub strategy: String,
+    /// Vertices.
+    pub vertices: usize,
+    /// Holes.
+    pub holes: usize,
+    /// Reflex vertices r.
+    pub reflex_vertices: usize,
+    /// Free area.
+    pub free_area: f64,
+    /// Scans.
+    pub scans: u64,
+    /// Moves.
+    pub moves: u64,
+    /// Metres.
+    pub distance: f64,
+    /// Total time.
+    pub time: f64,
+    /// Scan time.
+    pub scan_time_total: f64,
+    /// Move time.
+    pub move_time_total: f64,
+    /// Travel time.
+    pub travel_time_total: f64,
+    /// Covered area over free area.
+    pub coverage: f64,
+    /// The paper's r + 1.
+    pub scans_upper: usize,
+    /// Whether scans ≤ r + 1.
+    pub within_bound: bool,
+    /// Empty, or why the run failed.
+    pub error: String,
+}
+
+/// An environment to sweep: name, domain and start.
+pub type SweepInput = (String, crate::geometry::Domain, crate::kernel::Point);
+
+/// Explores every input with every strategy, in parallel (rayon); rows come back in input
+/// order, strategies in the given order, whatever the thread count. `tick` is called after
+/// each run (for a progress bar).
+pub fn sweep(
+    inputs: &[SweepInput],
+    strategies: &[&str],
+    cost: &CostModel,
+    tick: &(dyn Fn() + Sync),
+) -> Vec<SweepRow> {
+    use rayon::prelude::*;
+    let jobs: Vec<(usize, usize)> =
+        (0..inputs.len()).flat_map(|i| (0..strategies.len()).map(move |s| (i, s))).collect();
+    jobs.par_iter()
+        .map(|&(i, s)| {
+            let (name, domain, start) = &inputs[i];
+            let row = sweep_one(name, domain, *start, strategies[s], cost);
+            tick();
+            row
+        })
+        .collect()
+}
+
+fn sweep_one(
+    name: &str,
+    domain: &crate::geometry::Domain,
+    start: crate::kernel::Point,
+    strategy: &str,
+    cost: &CostModel,
+) -> SweepRow {
+    let r = domain.reflex_vertices().len();
+    let mut row = SweepRow {
+        environment: name.into(),
+        strategy: strategy.into(),
+        vertices: domain.vertex_count(),
+        holes: domain.holes().len(),
+        reflex_vertices: r,
+        free_area: domain.area(),
+        scans: 0,
+        moves: 0,
+        distance: 0.0,
+        time: 0.0,
+        scan_time_total: 0.0,
+        move_time_total: 0.0,
+        travel_time_total: 0.0,
+        coverage: 0.0,
+        scans_upper: r + 1,
+        within_bound: false,
+        error: String::new(),
+    };
+    let outcome = (|| -> Result<PolygonRun, String> {
+        let world = PolygonWorld::new(domain.clone()).map_err(|e| e.to_string())?;
+        let mut s = crate::strategy::polygon::by_name(strategy)
+            .ok_or_else(|| format!("unknown strategy {strategy}"))?;
+        run(&world, start, cost, s.as_mut(), &mut NoObserver).map_err(|e| e.to_string())
+    })();
+    match outcome {
+        Ok(run) => {
+            let polys: Vec<Vec<crate::kernel::Point>> =
+                run.scans.iter().map(|s| s.region.polygon.clone()).collect();
+            row.scans = run.tally.scans;
+            row.moves = run.tally.moves;
+            row.distance = run.tally.distance;
+            row.time = run.time.total();
+            row.scan_time_total = run.time.scan_time_total;
+            row.move_time_total = run.time.move_time_total;
+            row.travel_time_total = run.time.travel_time_total;
+            row.coverage = Region::union_all(&polys).area() / row.free_area;
+            row.within_bound = run.tally.scans as usize <= r + 1;
+        }
+        Err(e) => row.error = e,
+    }
+    row
+}

@@ -34,6 +34,15 @@ impl PolygonWorld {
         Ok(PolygonObservation { at, region: self.vis.query(at)? })
     }
 
+    /// A point strictly inside the free space (the centroid of a triangle of the mesh), for
+    /// environments that name no start.
+    pub fn interior_point(&self) -> Point {
+        let m = self.vis.mesh();
+        let t = m.tri.first().copied().unwrap_or([0, 0, 0]);
+        let p = t.map(|i| m.points()[i as usize]);
+        [(p[0][0] + p[1][0] + p[2][0]) / 3.0, (p[0][1] + p[1][1] + p[2][1]) / 3.0]
+    }
+
     /// Whether a straight move stays in the closed free space (exact).
     pub fn can_move(&self, from: Point, to: Point) -> bool {
         segment_is_free(self.vis.mesh(), from, to)

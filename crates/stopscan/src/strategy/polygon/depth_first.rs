@@ -18,7 +18,7 @@
 
 use serde::{Deserialize, Serialize};
 
-use super::known::Known;
+use super::known::{Known, Target};
 use super::{PolygonFeedback, PolygonStrategy};
 use crate::kernel::Point;
 use crate::protocol::Action;
@@ -29,6 +29,7 @@ pub struct DepthFirst {
     known: Known,
     stack: Vec<usize>,
     route: Vec<Point>,
+    pending: Option<Target>,
 }
 
 impl DepthFirst {
@@ -43,8 +44,9 @@ impl DepthFirst {
         let mut route = Vec::new();
         loop {
             let Some(&top) = self.stack.last() else { return Action::Done };
-            if let Some(z) = self.known.first_unexplored(top) {
-                route.push(z);
+            if let Some(t) = self.known.next_target(top) {
+                self.pending = Some(t);
+                route.push(t.at);
                 route.reverse();
                 self.route = route;
                 return self.next_move();
@@ -74,6 +76,9 @@ impl PolygonStrategy for DepthFirst {
             PolygonFeedback::Start(_) => Action::Scan,
             PolygonFeedback::Arrived => self.next_move(),
             PolygonFeedback::Scanned(obs) => {
+                if let Some(t) = self.pending.take() {
+                    self.known.handled(t);
+                }
                 let parent = self.stack.last().copied();
                 let v = self.known.add(obs, parent);
                 self.stack.push(v);

@@ -28,6 +28,15 @@ struct Window {
     checked: usize,
 }
 
+/// A next viewpoint and the window sample it is for.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+pub(super) struct Target {
+    pub(super) at: Point,
+    view: usize,
+    window: usize,
+    sample: usize,
+}
+
 /// The views taken so far.
 #[derive(Debug, Clone, Default, PartialEq, Serialize, Deserialize)]
 pub(super) struct Known {
@@ -86,7 +95,7 @@ impl Known {
     /// [`Self::SAMPLES`] points along it whose unseen side is not yet covered, moved a
     /// millionth of the window's length into the seen side (inside the view's region, so the
     /// straight move there is safe although the window's points are constructed).
-    pub(super) fn first_unexplored(&mut self, view: usize) -> Option<Point> {
+    pub(super) fn next_target(&mut self, view: usize) -> Option<Target> {
         let n = self.views.len();
         for k in 0..self.views[view].windows.len() {
             loop {
@@ -103,11 +112,27 @@ impl Known {
                     w.checked = 0;
                 } else {
                     w.checked = n;
-                    return Some(Self::along(f, t, u, 1.0));
+                    return Some(Target {
+                        at: Self::along(f, t, u, 1.0),
+                        view,
+                        window: k,
+                        sample: w.sample,
+                    });
                 }
             }
         }
         None
+    }
+
+    /// Marks a target's window sample as handled once a scan was taken for it, covered or
+    /// not: a point that scan cannot see (a hair inside an obstacle the window grazes) must
+    /// not be tried again, so every scan makes progress and the exploration ends.
+    pub(super) fn handled(&mut self, t: Target) {
+        let w = &mut self.views[t.view].windows[t.window];
+        if w.sample <= t.sample {
+            w.sample = t.sample + 1;
+            w.checked = 0;
+        }
     }
 
     /// The chain of views from `v` up to the root.

@@ -8,7 +8,7 @@
 
 use serde::{Deserialize, Serialize};
 
-use super::known::Known;
+use super::known::{Known, Target};
 use super::{PolygonFeedback, PolygonStrategy};
 use crate::kernel::Point;
 use crate::protocol::Action;
@@ -20,6 +20,7 @@ pub struct NearestFrontier {
     current: Option<usize>,
     target_parent: Option<usize>,
     route: Vec<Point>,
+    pending: Option<Target>,
 }
 
 impl NearestFrontier {
@@ -30,20 +31,21 @@ impl NearestFrontier {
 
     fn plan(&mut self) -> Action<Point> {
         let Some(cur) = self.current else { return Action::Done };
-        let mut best: Option<(f64, usize, Point, Vec<Point>)> = None;
+        let mut best: Option<(f64, usize, Target, Vec<Point>)> = None;
         for v in 0..self.known.views.len() {
-            if let Some(z) = self.known.first_unexplored(v) {
+            if let Some(t) = self.known.next_target(v) {
                 let (mut pts, len) = self.known.route(cur, v);
                 let at = self.known.views[v].at;
-                let total = len + (z[0] - at[0]).hypot(z[1] - at[1]);
+                let total = len + (t.at[0] - at[0]).hypot(t.at[1] - at[1]);
                 if best.as_ref().is_none_or(|b| total < b.0) {
-                    pts.push(z);
-                    best = Some((total, v, z, pts));
+                    pts.push(t.at);
+                    best = Some((total, v, t, pts));
                 }
             }
         }
-        let Some((_, v, _, pts)) = best else { return Action::Done };
+        let Some((_, v, t, pts)) = best else { return Action::Done };
         self.target_parent = Some(v);
+        self.pending = Some(t);
         self.route = pts.into_iter().rev().collect();
         self.next_move()
     }
@@ -66,6 +68,9 @@ impl PolygonStrategy for NearestFrontier {
             PolygonFeedback::Start(_) => Action::Scan,
             PolygonFeedback::Arrived => self.next_move(),
             PolygonFeedback::Scanned(obs) => {
+                if let Some(t) = self.pending.take() {
+                    self.known.handled(t);
+                }
                 let v = self.known.add(obs, self.target_parent);
                 self.current = Some(v);
                 self.plan()
