@@ -18,7 +18,7 @@
 
 use serde::{Deserialize, Serialize};
 
-use super::known::{Known, Target};
+use super::known::Known;
 use super::{PolygonFeedback, PolygonStrategy};
 use crate::kernel::Point;
 use crate::protocol::Action;
@@ -28,8 +28,6 @@ use crate::protocol::Action;
 pub struct DepthFirst {
     known: Known,
     stack: Vec<usize>,
-    route: Vec<Point>,
-    pending: Option<Target>,
 }
 
 impl DepthFirst {
@@ -45,23 +43,12 @@ impl DepthFirst {
         loop {
             let Some(&top) = self.stack.last() else { return Action::Done };
             if let Some(t) = self.known.next_target(top) {
-                self.pending = Some(t);
-                route.push(t.at);
-                route.reverse();
-                self.route = route;
-                return self.next_move();
+                return self.known.go(route, t);
             }
             self.stack.pop();
             if let Some(&parent) = self.stack.last() {
                 route.push(self.known.views[parent].at);
             }
-        }
-    }
-
-    fn next_move(&mut self) -> Action<Point> {
-        match self.route.pop() {
-            Some(p) => Action::MoveTo { to: p },
-            None => Action::Scan,
         }
     }
 }
@@ -74,11 +61,8 @@ impl PolygonStrategy for DepthFirst {
     fn act(&mut self, feedback: &PolygonFeedback) -> Action<Point> {
         match feedback {
             PolygonFeedback::Start(_) => Action::Scan,
-            PolygonFeedback::Arrived => self.next_move(),
+            PolygonFeedback::Arrived => self.known.next_move(),
             PolygonFeedback::Scanned(obs) => {
-                if let Some(t) = self.pending.take() {
-                    self.known.handled(t);
-                }
                 let parent = self.stack.last().copied();
                 let v = self.known.add(obs, parent);
                 self.stack.push(v);

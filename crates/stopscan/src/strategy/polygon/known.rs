@@ -6,6 +6,7 @@ use serde::{Deserialize, Serialize};
 
 use crate::algorithm::visibility::BoundaryPiece;
 use crate::kernel::{Point, RingSide, ring_side};
+use crate::protocol::Action;
 use crate::protocol::polygon::PolygonObservation;
 
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
@@ -41,14 +42,22 @@ pub(super) struct Target {
 #[derive(Debug, Clone, Default, PartialEq, Serialize, Deserialize)]
 pub(super) struct Known {
     pub(super) views: Vec<View>,
+    /// The window sample the next scan is for.
+    pending: Option<Target>,
+    /// Waypoints still to drive, last first.
+    route: Vec<Point>,
 }
 
 impl Known {
     /// Points along a window where "explored" is tested.
     const SAMPLES: usize = 16;
 
-    /// Records a scan taken from inside the region of view `parent`.
+    /// Records a scan taken from inside the region of view `parent`; the target it was taken
+    /// for counts as handled.
     pub(super) fn add(&mut self, obs: &PolygonObservation, parent: Option<usize>) -> usize {
+        if let Some(t) = self.pending.take() {
+            self.handled(t);
+        }
         let windows = obs
             .region
             .boundary
@@ -127,11 +136,28 @@ impl Known {
     /// Marks a target's window sample as handled once a scan was taken for it, covered or
     /// not: a point that scan cannot see (a hair inside an obstacle the window grazes) must
     /// not be tried again, so every scan makes progress and the exploration ends.
-    pub(super) fn handled(&mut self, t: Target) {
+    fn handled(&mut self, t: Target) {
         let w = &mut self.views[t.view].windows[t.window];
         if w.sample <= t.sample {
             w.sample = t.sample + 1;
             w.checked = 0;
+        }
+    }
+
+    /// Plans a trip: drive through `waypoints` (in order) to the target, then scan.
+    pub(super) fn go(&mut self, mut waypoints: Vec<Point>, target: Target) -> Action<Point> {
+        waypoints.push(target.at);
+        waypoints.reverse();
+        self.route = waypoints;
+        self.pending = Some(target);
+        self.next_move()
+    }
+
+    /// The next action of the planned trip: the next waypoint, or the scan at its end.
+    pub(super) fn next_move(&mut self) -> Action<Point> {
+        match self.route.pop() {
+            Some(p) => Action::MoveTo { to: p },
+            None => Action::Scan,
         }
     }
 

@@ -19,8 +19,6 @@ pub struct NearestFrontier {
     known: Known,
     current: Option<usize>,
     target_parent: Option<usize>,
-    route: Vec<Point>,
-    pending: Option<Target>,
 }
 
 impl NearestFrontier {
@@ -38,23 +36,13 @@ impl NearestFrontier {
                 let at = self.known.views[v].at;
                 let total = len + (t.at[0] - at[0]).hypot(t.at[1] - at[1]);
                 if best.as_ref().is_none_or(|b| total < b.0) {
-                    pts.push(t.at);
-                    best = Some((total, v, t, pts));
+                    best = Some((total, v, t, std::mem::take(&mut pts)));
                 }
             }
         }
         let Some((_, v, t, pts)) = best else { return Action::Done };
         self.target_parent = Some(v);
-        self.pending = Some(t);
-        self.route = pts.into_iter().rev().collect();
-        self.next_move()
-    }
-
-    fn next_move(&mut self) -> Action<Point> {
-        match self.route.pop() {
-            Some(p) => Action::MoveTo { to: p },
-            None => Action::Scan,
-        }
+        self.known.go(pts, t)
     }
 }
 
@@ -66,11 +54,8 @@ impl PolygonStrategy for NearestFrontier {
     fn act(&mut self, feedback: &PolygonFeedback) -> Action<Point> {
         match feedback {
             PolygonFeedback::Start(_) => Action::Scan,
-            PolygonFeedback::Arrived => self.next_move(),
+            PolygonFeedback::Arrived => self.known.next_move(),
             PolygonFeedback::Scanned(obs) => {
-                if let Some(t) = self.pending.take() {
-                    self.known.handled(t);
-                }
                 let v = self.known.add(obs, self.target_parent);
                 self.current = Some(v);
                 self.plan()
