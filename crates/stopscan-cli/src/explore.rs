@@ -55,7 +55,7 @@ fn summary(w: &mut dyn Write, o: &RunRecord) -> std::io::Result<()> {
         e.name, e.vertices, e.holes, e.reflex_vertices, e.free_area, o.strategy.name
     )?;
     let mut t = Table::new(&["quantity", "value"]);
-    let rows: [(&str, String); 12] = [
+    let rows: [(&str, String); 13] = [
         ("scans", m.scans.to_string()),
         ("moves", m.moves.to_string()),
         ("distance (m)", num(Some(m.distance), 3)),
@@ -64,6 +64,7 @@ fn summary(w: &mut dyn Write, o: &RunRecord) -> std::io::Result<()> {
         ("travel time (s)", num(Some(m.travel_time_total), 3)),
         ("total time (s)", num(Some(m.time), 3)),
         ("coverage", num(Some(m.coverage), 9)),
+        ("windows left open", m.open_windows.to_string()),
         ("bound r + 1 (paper)", o.bounds.scans_upper.to_string()),
         ("lower bound on the optimum", o.bounds.scans_lower.to_string()),
         ("scans / lower bound", num(Some(m.scans as f64 / o.bounds.scans_lower as f64), 2)),

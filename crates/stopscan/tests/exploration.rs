@@ -2,6 +2,7 @@
 //! legal moves and determinism on generated instances.
 
 use rand::{RngExt, SeedableRng};
+use stopscan::algorithm::cover::open_windows;
 use stopscan::algorithm::region::Region;
 use stopscan::generate::{Instance, comb, office, pillar_forest, spiral, star};
 use stopscan::geometry::Location;
@@ -47,7 +48,61 @@ fn check(inst: &Instance, label: &str) -> PolygonRun {
     for w in run.path.windows(2) {
         assert!(world.can_move(w[0], w[1]), "{label}: {w:?}");
     }
+    // The exact certificate: every window of every scan is looked through by another.
+    let regions: Vec<_> = run.scans.iter().map(|s| s.region.clone()).collect();
+    assert_eq!(open_windows(&regions), 0, "{label}: windows left open");
     run
+}
+
+/// A room with a side corridor whose wall is in line with the start: the ray down the wall
+/// grazes it edge-on. It must be an edge of the region, not a window (a window there has only
+/// the inside of the wall behind it, and an explorer would try to look through it forever).
+#[test]
+fn a_wall_in_line_with_the_start_is_an_edge_not_a_window() {
+    let outer = vec![
+        [0.0, 0.0],
+        [2.0, 0.0],
+        [2.0, 1.0],
+        [5.0, 1.0],
+        [5.0, 2.0],
+        [3.0, 2.0],
+        [3.0, 5.0],
+        [0.0, 5.0],
+    ];
+    let domain = stopscan::geometry::Domain::new(outer, vec![]).unwrap();
+    let vis = stopscan::algorithm::visibility::Visibility::new(domain.clone()).unwrap();
+    let region = vis.query([2.0, 4.0]).unwrap();
+    for w in region.windows() {
+        let (a, b) = w.ends();
+        assert!(!(a[0] == 2.0 && b[0] == 2.0), "edge-on wall reported as window {w:?}");
+    }
+    let inst = Instance { domain, start: [2.0, 4.0] };
+    let run = check(&inst, "wall in line");
+    assert!(run.tally.scans <= 2, "{} scans", run.tally.scans);
+}
+
+proptest::proptest! {
+    #![proptest_config(proptest::prelude::ProptestConfig::with_cases(48))]
+
+    /// Coverage (area and certificate), legal moves and r + 1 from random starts, many of
+    /// them on the integer grid the generators use, so in line with walls and vertices.
+    #[test]
+    fn exploration_holds_from_any_start(kind in 0usize..4, seed in 0u64..1000, sx in 0.0..1.0f64, sy in 0.0..1.0f64, snap in proptest::prelude::any::<bool>()) {
+        let inst = match kind {
+            0 => office(1 + (seed % 6) as usize, (seed % 9) as usize, seed).unwrap(),
+            1 => pillar_forest(30.0, 20.0, 1 + (seed % 12) as usize, seed).unwrap(),
+            2 => comb(1 + (seed % 6) as usize).unwrap(),
+            _ => star(3 + (seed % 7) as usize).unwrap(),
+        };
+        let [lo, hi] = inst.domain.bounds();
+        let mut p = [lo[0] + sx * (hi[0] - lo[0]), lo[1] + sy * (hi[1] - lo[1])];
+        if snap {
+            p = [p[0].round(), p[1].round()];
+        }
+        if inst.domain.locate(p) == Location::Interior {
+            check(&Instance { domain: inst.domain.clone(), start: p }, "random start");
+        }
+    }
 }
 
 #[test]

@@ -1,5 +1,6 @@
 //! General algorithms with no robot concepts in them.
 
+pub mod cover;
 pub mod mdp;
 pub mod nelder_mead;
 pub mod region;

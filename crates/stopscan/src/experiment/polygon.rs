@@ -4,6 +4,7 @@
 use super::{ExperimentError, Reproduction, Row};
 use crate::algorithm::region::Region;
 use crate::generate::{spiral, star};
+use crate::io::run_record::RunRecord;
 use crate::protocol::CostModel;
 use crate::sim::NoObserver;
 use crate::sim::polygon::{PolygonRun, run};
@@ -135,6 +136,8 @@ pub struct SweepRow {
     pub travel_time_total: f64,
     /// Covered area over free area.
     pub coverage: f64,
+    /// Windows no other scan looks through (0: the free space was seen whole).
+    pub open_windows: usize,
     /// The paper's r + 1.
     pub scans_upper: usize,
     /// Whether scans ≤ r + 1.
@@ -191,6 +194,7 @@ fn sweep_one(
         move_time_total: 0.0,
         travel_time_total: 0.0,
         coverage: 0.0,
+        open_windows: 0,
         scans_upper: r + 1,
         within_bound: false,
         error: String::new(),
@@ -203,16 +207,16 @@ fn sweep_one(
     })();
     match outcome {
         Ok(run) => {
-            let polys: Vec<Vec<crate::kernel::Point>> =
-                run.scans.iter().map(|s| s.region.polygon.clone()).collect();
-            row.scans = run.tally.scans;
-            row.moves = run.tally.moves;
-            row.distance = run.tally.distance;
-            row.time = run.time.total();
-            row.scan_time_total = run.time.scan_time_total;
-            row.move_time_total = run.time.move_time_total;
-            row.travel_time_total = run.time.travel_time_total;
-            row.coverage = Region::union_all(&polys).area() / row.free_area;
+            let m = RunRecord::polygon(name, domain, strategy, cost, &run, 0).metrics;
+            row.scans = m.scans;
+            row.moves = m.moves;
+            row.distance = m.distance;
+            row.time = m.time;
+            row.scan_time_total = m.scan_time_total;
+            row.move_time_total = m.move_time_total;
+            row.travel_time_total = m.travel_time_total;
+            row.coverage = m.coverage;
+            row.open_windows = m.open_windows;
             row.within_bound = run.tally.scans as usize <= r + 1;
         }
         Err(e) => row.error = e,

@@ -79,8 +79,12 @@ pub struct Metrics {
     pub travel_time_total: f64,
     /// Area of the union of the regions seen, m².
     pub covered_area: f64,
-    /// `covered_area / free_area`.
+    /// `covered_area / free_area` (the union's area is measured by i_overlay, good to about
+    /// 1e-8 relative, so it can exceed 1 by that much).
     pub coverage: f64,
+    /// Windows of the scanned regions whose far side no other scan covers (exact test up to
+    /// rounding of cut points): 0 certifies that the whole free space was seen.
+    pub open_windows: usize,
 }
 
 /// `"bounds"`.
@@ -131,6 +135,8 @@ impl RunRecord {
     ) -> Self {
         let polys: Vec<Vec<Point>> = run.scans.iter().map(|s| s.region.polygon.clone()).collect();
         let covered = Region::union_all(&polys).area();
+        let regions: Vec<_> = run.scans.iter().map(|s| s.region.clone()).collect();
+        let open_windows = crate::algorithm::cover::open_windows(&regions);
         let free = domain.area();
         let r = domain.reflex_vertices().len();
         Self {
@@ -165,6 +171,7 @@ impl RunRecord {
                 travel_time_total: run.time.travel_time_total,
                 covered_area: covered,
                 coverage: covered / free,
+                open_windows,
             },
             bounds: Bounds { scans_upper: r + 1, scans_lower: 1, competitive_ratio: None },
             seed,

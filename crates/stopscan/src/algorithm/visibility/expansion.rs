@@ -14,7 +14,7 @@
 
 use super::{BoundaryPiece, VisibilityError, VisibilityRegion};
 use crate::algorithm::triangulation::{Mesh, MeshLocation, NONE};
-use crate::kernel::{Point, orient_sign};
+use crate::kernel::{Point, on_segment, orient_sign};
 
 /// Reusable buffers for [`expand`].
 #[derive(Debug, Default, Clone)]
@@ -174,6 +174,7 @@ fn ray_hit(q: Point, through: Point, a: Point, b: Point) -> Point {
 
 fn assemble(mesh: &Mesh, q: Point, pieces: &[Piece], out: &mut VisibilityRegion) {
     let n = pieces.len();
+    let pts = mesh.points();
     for (i, p) in pieces.iter().enumerate() {
         let edge = mesh.edge_of(p.edge_start);
         if out.polygon.last() != Some(&p.from) {
@@ -187,14 +188,69 @@ fn assemble(mesh: &Mesh, q: Point, pieces: &[Piece], out: &mut VisibilityRegion)
         } else {
             BoundaryPiece::Partial { from: p.from, to: p.to, edge }
         });
-        let next = pieces[(i + 1) % n].from;
-        if next != p.to {
-            let d = |x: Point| (x[0] - q[0]).powi(2) + (x[1] - q[1]).powi(2);
-            let (reflex, far) = if d(p.to) <= d(next) { (p.to, next) } else { (next, p.to) };
-            out.boundary.push(BoundaryPiece::Window { from: p.to, to: next, reflex, far });
+        let np = &pieces[(i + 1) % n];
+        if np.from != p.to {
+            // Which ends of the gap are domain vertices (a piece ends exactly on its edge's
+            // vertex or at a constructed point).
+            let end = mesh.ring_next(p.edge_start);
+            let va = (pts[end as usize] == p.to).then_some(end);
+            let vb = (pts[np.edge_start as usize] == np.from).then_some(np.edge_start);
+            gap(mesh, q, (p.to, va), (np.from, vb), out);
         }
     }
     if out.polygon.len() > 1 && out.polygon.first() == out.polygon.last() {
         out.polygon.pop();
+    }
+}
+
+/// Labels the gap from `a` to `b` (on one ray from `q`) between two consecutive pieces.
+///
+/// Domain edges collinear with the ray are seen edge-on and never entered by the expansion, so
+/// they show up inside gaps: those parts are edges, grazed, and only what is left between them
+/// is a window. Without this an edge seen edge-on would be reported as a window whose far
+/// side is outside the domain, and an explorer would try to look through it forever.
+fn gap(
+    mesh: &Mesh,
+    q: Point,
+    (a, va): (Point, Option<u32>),
+    (b, vb): (Point, Option<u32>),
+    out: &mut VisibilityRegion,
+) {
+    let pts = mesh.points();
+    let edge_between = |v: u32, w: u32| {
+        if mesh.ring_next(v) == w { mesh.edge_of(v) } else { mesh.edge_of(w) }
+    };
+    // Follow collinear domain edges from one end toward the other.
+    let walk = |mut at: (Point, Option<u32>), goal: Point| {
+        let mut steps = Vec::new();
+        let mut last = None;
+        while let Some(v) = at.1 {
+            if at.0 == goal {
+                break;
+            }
+            let next = [mesh.ring_next(v), mesh.ring_prev(v)].into_iter().find(|&w| {
+                Some(w) != last
+                    && pts[w as usize] != at.0
+                    && on_segment(at.0, goal, pts[w as usize])
+            });
+            let Some(w) = next else { break };
+            steps.push((at.0, pts[w as usize], edge_between(v, w)));
+            last = Some(v);
+            at = (pts[w as usize], Some(w));
+        }
+        (steps, at.0)
+    };
+    let (front, mid_a) = walk((a, va), b);
+    let (back, mid_b) = if mid_a == b { (Vec::new(), b) } else { walk((b, vb), mid_a) };
+    for &(from, to, edge) in &front {
+        out.boundary.push(BoundaryPiece::Edge { from, to, edge });
+    }
+    if mid_a != mid_b {
+        let d = |x: Point| (x[0] - q[0]).powi(2) + (x[1] - q[1]).powi(2);
+        let (reflex, far) = if d(mid_a) <= d(mid_b) { (mid_a, mid_b) } else { (mid_b, mid_a) };
+        out.boundary.push(BoundaryPiece::Window { from: mid_a, to: mid_b, reflex, far });
+    }
+    for &(to, from, edge) in back.iter().rev() {
+        out.boundary.push(BoundaryPiece::Edge { from, to, edge });
     }
 }

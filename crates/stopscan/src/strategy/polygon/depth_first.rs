@@ -3,18 +3,18 @@
 //!
 //! After each scan the robot looks, from the deepest view down the search path, for a window
 //! that is still unexplored: one whose far side is not yet covered by any region seen. The next
-//! viewpoint is on that window, moved a millionth of the window's length into the seen side (the
-//! paper's `z` on the constructed edge, inside the partially visible triangle `uvw`): it lies
-//! inside the view's region, so the forward move is a straight segment in seen free space.
-//! When a view has no unexplored window the search backs up to its parent, retracing the
-//! forward move (a backward move). The search ends when the start view has none. The paper
-//! proves at most r + 1 scans.
+//! viewpoint is on that window (the paper's `z` on the constructed edge, inside the partially
+//! visible triangle `uvw`), in the middle of its first uncovered part, moved a hair toward the
+//! view's viewpoint so that it lies inside the view's region and the forward move is a
+//! straight segment in seen free space. When a view has no unexplored window the search backs
+//! up to its parent, retracing the forward move (a backward move). The search ends when the
+//! start view has none. The paper proves at most r + 1 scans.
 //!
-//! "Unexplored" is decided at 16 points along the window, each a millionth of the window's
-//! length past it on the side away from the owning view: a window is explored when all are
-//! covered by regions seen. The next viewpoint is placed at the first uncovered one (on the
-//! seen side), and a scan there covers it, so every scan makes progress (the paper's
-//! Corollary 1) and the search ends.
+//! "Unexplored" is decided exactly, not by samples: the parts of a window whose far side lies
+//! in another region are cut out at the points where that region's boundary meets the window
+//! ([`crate::algorithm::cover`]). A scan taken for an uncovered part marks that part handled
+//! even if it could not see it, so every scan makes progress (the paper's Corollary 1) and
+//! the search ends.
 
 use serde::{Deserialize, Serialize};
 

@@ -4,6 +4,7 @@
 
 use serde::{Deserialize, Serialize};
 
+use crate::algorithm::cover::{self, Intervals};
 use crate::algorithm::visibility::BoundaryPiece;
 use crate::kernel::{Point, RingSide, ring_side};
 use crate::protocol::Action;
@@ -18,40 +19,37 @@ pub(super) struct View {
     pub(super) parent: Option<usize>,
 }
 
-/// A window and how far its exploration test has got. Samples only ever turn from unexplored
-/// to explored, so the test resumes where it stopped: at sample `sample`, against the views
-/// from index `checked` on.
+/// A window and how far its exploration test has got: the parts of it (as parameter
+/// intervals from `from` to `to`) whose far side is covered, by the views before `checked`
+/// or by a scan taken for it. Covered parts only grow, so the test resumes where it stopped.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 struct Window {
     from: Point,
     to: Point,
-    sample: usize,
+    covered: Intervals,
     checked: usize,
 }
 
-/// A next viewpoint and the window sample it is for.
+/// A next viewpoint and the part of a window it is for.
 #[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
 pub(super) struct Target {
     pub(super) at: Point,
     view: usize,
     window: usize,
-    sample: usize,
+    gap: [f64; 2],
 }
 
 /// The views taken so far.
 #[derive(Debug, Clone, Default, PartialEq, Serialize, Deserialize)]
 pub(super) struct Known {
     pub(super) views: Vec<View>,
-    /// The window sample the next scan is for.
+    /// The window part the next scan is for.
     pending: Option<Target>,
     /// Waypoints still to drive, last first.
     route: Vec<Point>,
 }
 
 impl Known {
-    /// Points along a window where "explored" is tested.
-    const SAMPLES: usize = 16;
-
     /// Records a scan taken from inside the region of view `parent`; the target it was taken
     /// for counts as handled.
     pub(super) fn add(&mut self, obs: &PolygonObservation, parent: Option<usize>) -> usize {
@@ -64,84 +62,68 @@ impl Known {
             .iter()
             .filter_map(|b| match *b {
                 BoundaryPiece::Window { from, to, .. } => {
-                    Some(Window { from, to, sample: 0, checked: 0 })
+                    Some(Window { from, to, covered: Vec::new(), checked: 0 })
                 }
                 _ => None,
             })
             .collect();
         let poly = &obs.region.polygon;
-        let mut bounds = [[f64::MAX; 2], [f64::MIN; 2]];
-        for p in poly {
-            bounds = [
-                [bounds[0][0].min(p[0]), bounds[0][1].min(p[1])],
-                [bounds[1][0].max(p[0]), bounds[1][1].max(p[1])],
-            ];
-        }
+        let bounds = cover::bounds_of(poly);
         self.views.push(View { at: obs.at, polygon: poly.clone(), bounds, windows, parent });
         self.views.len() - 1
     }
 
-    /// The point at fraction `t` of the window, pushed `side` millionths of the window's
-    /// length to its left (positive: the seen side) or right (negative: the unseen side).
-    fn along(from: Point, to: Point, t: f64, side: f64) -> Point {
-        let (dx, dy) = (to[0] - from[0], to[1] - from[1]);
-        let e = 1e-6 * side;
-        [from[0] + t * dx - e * dy, from[1] + t * dy + e * dx]
-    }
-
-    /// Whether any of `views[from..]` covers `p` (newest first, bounding boxes first).
-    fn covered_by(&self, from: usize, p: Point) -> bool {
-        self.views[from..].iter().rev().any(|v| {
-            p[0] >= v.bounds[0][0]
-                && p[0] <= v.bounds[1][0]
-                && p[1] >= v.bounds[0][1]
-                && p[1] <= v.bounds[1][1]
-                && ring_side(&v.polygon, p) != RingSide::Outside
-        })
-    }
-
-    /// The next viewpoint for the first unexplored window of `view`: at the first of
-    /// [`Self::SAMPLES`] points along it whose unseen side is not yet covered, moved a
-    /// millionth of the window's length into the seen side (inside the view's region, so the
-    /// straight move there is safe although the window's points are constructed).
+    /// The next viewpoint for the first unexplored window of `view` (the paper's Step 5): a
+    /// window is unexplored while part of its far side is covered by no other view
+    /// ([`cover::side_cover`], exact up to the rounding of cut points). The viewpoint is the
+    /// middle of the first uncovered part, moved a millionth of the window's length into the
+    /// view's region (less where the region is thinner), so the straight move there from the
+    /// viewpoint is safe, and from it the whole far side of the window is seen.
     pub(super) fn next_target(&mut self, view: usize) -> Option<Target> {
         let n = self.views.len();
         for k in 0..self.views[view].windows.len() {
-            loop {
+            let (from, to, checked) = {
                 let w = &self.views[view].windows[k];
-                if w.sample == Self::SAMPLES {
-                    break;
+                (w.from, w.to, w.checked)
+            };
+            if checked < n {
+                let mut covered = std::mem::take(&mut self.views[view].windows[k].covered);
+                for (j, v) in self.views.iter().enumerate().skip(checked) {
+                    if j != view {
+                        cover::side_cover(from, to, &v.polygon, v.bounds, &mut covered);
+                    }
                 }
-                let (f, t, u, from) =
-                    (w.from, w.to, (w.sample as f64 + 0.5) / Self::SAMPLES as f64, w.checked);
-                let covered = self.covered_by(from, Self::along(f, t, u, -1.0));
+                cover::merge(&mut covered);
                 let w = &mut self.views[view].windows[k];
-                if covered {
-                    w.sample += 1;
-                    w.checked = 0;
-                } else {
-                    w.checked = n;
-                    return Some(Target {
-                        at: Self::along(f, t, u, 1.0),
-                        view,
-                        window: k,
-                        sample: w.sample,
-                    });
-                }
+                w.covered = covered;
+                w.checked = n;
+            }
+            if let Some(gap) = cover::first_gap(&self.views[view].windows[k].covered) {
+                let tm = 0.5 * (gap[0] + gap[1]);
+                let x = [from[0] + tm * (to[0] - from[0]), from[1] + tm * (to[1] - from[1])];
+                // Windows are radial, so the step goes sideways into the region (left of the
+                // window, which runs counter-clockwise around it), not toward the viewpoint:
+                // a move along the window's own ray would graze its reflex vertex.
+                let (dx, dy) = (to[0] - from[0], to[1] - from[1]);
+                let v = &self.views[view];
+                let at = [1e-6, 1e-8, 1e-10]
+                    .into_iter()
+                    .map(|e| [x[0] - e * dy, x[1] + e * dx])
+                    .find(|&z| ring_side(&v.polygon, z) == RingSide::Inside)
+                    .unwrap_or(v.at);
+                return Some(Target { at, view, window: k, gap });
             }
         }
         None
     }
 
-    /// Marks a target's window sample as handled once a scan was taken for it, covered or
-    /// not: a point that scan cannot see (a hair inside an obstacle the window grazes) must
-    /// not be tried again, so every scan makes progress and the exploration ends.
+    /// Marks a target's window part as handled once a scan was taken for it, seen or not: a
+    /// part no point near the window can see (a window grazing an obstacle) must not be
+    /// tried again, so every scan makes progress and the exploration ends.
     fn handled(&mut self, t: Target) {
         let w = &mut self.views[t.view].windows[t.window];
-        if w.sample <= t.sample {
-            w.sample = t.sample + 1;
-            w.checked = 0;
-        }
+        w.covered.push(t.gap);
+        cover::merge(&mut w.covered);
     }
 
     /// Plans a trip: drive through `waypoints` (in order) to the target, then scan.

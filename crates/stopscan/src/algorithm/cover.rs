@@ -1,0 +1,232 @@
+//! Which parts of a segment have a polygon on one side: the exact "is this window explored"
+//! test of online exploration.
+//!
+//! A window of a visibility region is explored when the free space just beyond it is seen by
+//! some other region. Point samples miss slivers, and points pushed a fixed distance past the
+//! window land inside obstacles near its ends. Instead, [`side_cover`] classifies every point
+//! `x` of the segment by the *limit*: `x` is covered by a polygon when `x + εn` lies in it for
+//! all small enough `ε > 0`, with `n` the normal toward the chosen side. The segment is cut at
+//! every point where the polygon's boundary meets it (side tests exact, cut parameters
+//! rounded once), and each piece is classified once: by an exact point-in-polygon test at its
+//! middle, or, where the piece runs along a polygon edge, by the side the polygon lies on.
+
+use crate::algorithm::visibility::VisibilityRegion;
+use crate::kernel::{Point, RingSide, orient_sign, ring_side};
+
+/// Parameter intervals `[t0, t1] ⊂ [0, 1]`, sorted and disjoint.
+pub type Intervals = Vec<[f64; 2]>;
+
+/// Gaps between covered intervals shorter than this (in segment parameter) are closed: they
+/// come from rounding, where the constructed vertices of different polygons (rays meeting
+/// walls, each rounded once) meet the segment at what is one point in exact arithmetic.
+pub const GAP_TOLERANCE: f64 = 1e-9;
+
+/// Appends to `out` the parameter intervals of segment `a → b` covered on its right side by
+/// the closed polygon `poly` (any orientation, simple), in the limit sense of the module
+/// documentation. `bounds` is the polygon's bounding box, for a quick rejection.
+///
+/// # Complexity
+/// O(n log n) for a polygon of n vertices that meets the segment; O(1) when the boxes miss.
+pub fn side_cover(a: Point, b: Point, poly: &[Point], bounds: [Point; 2], out: &mut Intervals) {
+    let lo = [a[0].min(b[0]), a[1].min(b[1])];
+    let hi = [a[0].max(b[0]), a[1].max(b[1])];
+    if hi[0] < bounds[0][0] || lo[0] > bounds[1][0] || hi[1] < bounds[0][1] || lo[1] > bounds[1][1]
+    {
+        return;
+    }
+    let (dx, dy) = (b[0] - a[0], b[1] - a[1]);
+    let len2 = dx * dx + dy * dy;
+    if len2 == 0.0 {
+        return;
+    }
+    let param = |p: Point| ((p[0] - a[0]) * dx + (p[1] - a[1]) * dy) / len2;
+    let ccw = signed_area(poly) > 0.0;
+    let n = poly.len();
+    let mut cuts = vec![0.0, 1.0];
+    // Pieces along polygon edges: (t0, t1, covered).
+    let mut along: Vec<(f64, f64, bool)> = Vec::new();
+    for i in 0..n {
+        let (p, q) = (poly[i], poly[(i + 1) % n]);
+        let (sp, sq) = (orient_sign(a, b, p), orient_sign(a, b, q));
+        if sp == 0 && sq == 0 {
+            let (t0, t1) = (param(p), param(q));
+            let (lo, hi) = (t0.min(t1).max(0.0), t0.max(t1).min(1.0));
+            if lo < hi {
+                cuts.extend([lo, hi]);
+                // The polygon lies left of its edge when counter-clockwise. The right side of
+                // a → b is covered when the polygon is on that side of the edge.
+                let same_direction = (q[0] - p[0]) * dx + (q[1] - p[1]) * dy > 0.0;
+                along.push((lo, hi, same_direction != ccw));
+            }
+            continue;
+        }
+        if sp == sq {
+            continue;
+        }
+        // The edge meets the line of a → b; does it meet the segment?
+        let (sa, sb) = (orient_sign(p, q, a), orient_sign(p, q, b));
+        if sa == sb && sa != 0 {
+            continue;
+        }
+        let t = if sp == 0 {
+            param(p)
+        } else if sq == 0 {
+            param(q)
+        } else {
+            let (ex, ey) = (q[0] - p[0], q[1] - p[1]);
+            ((p[0] - a[0]) * ey - (p[1] - a[1]) * ex) / (dx * ey - dy * ex)
+        };
+        cuts.push(t.clamp(0.0, 1.0));
+    }
+    cuts.sort_by(f64::total_cmp);
+    cuts.dedup();
+    let start = out.len();
+    for w in cuts.windows(2) {
+        let (t0, t1) = (w[0], w[1]);
+        if t1 <= t0 {
+            continue;
+        }
+        let tm = 0.5 * (t0 + t1);
+        let covered = if let Some(&(_, _, c)) = along.iter().find(|s| s.0 <= tm && tm <= s.1) {
+            c
+        } else {
+            let m = [a[0] + tm * dx, a[1] + tm * dy];
+            match ring_side(poly, m) {
+                RingSide::Inside => true,
+                RingSide::Outside => false,
+                // Rounding put the middle on an edge the segment crosses: step to the side.
+                RingSide::Boundary => {
+                    let e = 1e-9;
+                    ring_side(poly, [m[0] + e * dy, m[1] - e * dx]) == RingSide::Inside
+                }
+            }
+        };
+        if covered {
+            match out[start..].last_mut() {
+                Some(last) if last[1] >= t0 => last[1] = t1,
+                _ => out.push([t0, t1]),
+            }
+        }
+    }
+}
+
+/// Sorts and merges intervals, closing gaps shorter than [`GAP_TOLERANCE`].
+pub fn merge(iv: &mut Intervals) {
+    iv.sort_by(|x, y| x[0].total_cmp(&y[0]));
+    let mut out: Intervals = Vec::with_capacity(iv.len());
+    for &[t0, t1] in iv.iter() {
+        match out.last_mut() {
+            Some(last) if t0 <= last[1] + GAP_TOLERANCE => last[1] = last[1].max(t1),
+            _ => out.push([t0, t1]),
+        }
+    }
+    *iv = out;
+}
+
+/// The first gap of merged intervals in `[0, 1]` longer than [`GAP_TOLERANCE`].
+pub fn first_gap(iv: &[[f64; 2]]) -> Option<[f64; 2]> {
+    let mut at = 0.0;
+    for &[t0, t1] in iv {
+        if t0 > at + GAP_TOLERANCE {
+            return Some([at, t0]);
+        }
+        at = f64::max(at, t1);
+    }
+    (at < 1.0 - GAP_TOLERANCE).then_some([at, 1.0])
+}
+
+/// The windows of `regions` whose far side is not wholly covered by the other regions: zero
+/// certifies that the union of the regions is the whole connected free space (the paper's
+/// Lemma 2: a point not seen would be reached from the viewpoints only by crossing a window
+/// of the union), independently of area arithmetic.
+///
+/// # Complexity
+/// O(w · k · n) for w windows, k regions of n vertices, with a bounding-box rejection first.
+pub fn open_windows(regions: &[VisibilityRegion]) -> usize {
+    let boxes: Vec<[Point; 2]> = regions.iter().map(|r| bounds_of(&r.polygon)).collect();
+    let mut open = 0;
+    let mut iv = Vec::new();
+    for (i, r) in regions.iter().enumerate() {
+        for w in r.windows() {
+            let (a, b) = w.ends();
+            iv.clear();
+            for (j, o) in regions.iter().enumerate() {
+                if j != i {
+                    side_cover(a, b, &o.polygon, boxes[j], &mut iv);
+                }
+            }
+            merge(&mut iv);
+            if first_gap(&iv).is_some() {
+                open += 1;
+            }
+        }
+    }
+    open
+}
+
+/// The bounding box of a point set, `[min, max]`.
+pub fn bounds_of(points: &[Point]) -> [Point; 2] {
+    let mut b = [[f64::MAX; 2], [f64::MIN; 2]];
+    for p in points {
+        b = [[b[0][0].min(p[0]), b[0][1].min(p[1])], [b[1][0].max(p[0]), b[1][1].max(p[1])]];
+    }
+    b
+}
+
+fn signed_area(poly: &[Point]) -> f64 {
+    let n = poly.len();
+    let o = poly[0];
+    let mut s = 0.0;
+    for i in 1..n.saturating_sub(1) {
+        let (p, q) = (poly[i], poly[i + 1]);
+        s += (p[0] - o[0]) * (q[1] - o[1]) - (q[0] - o[0]) * (p[1] - o[1]);
+    }
+    s
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn cover(a: Point, b: Point, poly: &[Point]) -> Intervals {
+        let mut out = Vec::new();
+        side_cover(a, b, poly, bounds_of(poly), &mut out);
+        merge(&mut out);
+        out
+    }
+
+    #[test]
+    fn crossing_square_is_covered_in_its_middle() {
+        let sq = [[1.0, -1.0], [3.0, -1.0], [3.0, 1.0], [1.0, 1.0]];
+        assert_eq!(cover([0.0, 0.0], [4.0, 0.0], &sq), vec![[0.25, 0.75]]);
+    }
+
+    #[test]
+    fn an_edge_along_the_segment_covers_only_its_own_side() {
+        // The square lies below y = 0; the right side of (0,0) → (4,0) is below.
+        let below = [[1.0, -1.0], [3.0, -1.0], [3.0, 0.0], [1.0, 0.0]];
+        assert_eq!(cover([0.0, 0.0], [4.0, 0.0], &below), vec![[0.25, 0.75]]);
+        let above = [[1.0, 0.0], [3.0, 0.0], [3.0, 1.0], [1.0, 1.0]];
+        assert!(cover([0.0, 0.0], [4.0, 0.0], &above).is_empty());
+        // The same polygon clockwise gives the same answer.
+        let mut cw = below;
+        cw.reverse();
+        assert_eq!(cover([0.0, 0.0], [4.0, 0.0], &cw), vec![[0.25, 0.75]]);
+    }
+
+    #[test]
+    fn touching_at_a_vertex_covers_nothing() {
+        let tri = [[2.0, 0.0], [3.0, -1.0], [1.0, -1.0]];
+        assert!(cover([0.0, 0.0], [4.0, 0.0], &tri).is_empty());
+    }
+
+    #[test]
+    fn gaps_are_found_and_tiny_ones_closed() {
+        assert_eq!(first_gap(&[[0.0, 0.5], [0.5 + 1e-11, 1.0]]), None);
+        assert_eq!(first_gap(&[[0.0, 0.4], [0.6, 1.0]]), Some([0.4, 0.6]));
+        assert_eq!(first_gap(&[]), Some([0.0, 1.0]));
+        let mut iv = vec![[0.6, 1.0], [0.0, 0.3], [0.2, 0.61]];
+        merge(&mut iv);
+        assert_eq!(iv, vec![[0.0, 1.0]]);
+    }
+}
