@@ -269,8 +269,9 @@ pub(crate) struct ExploreArgs {
     /// or a folder of them: a sweep in parallel that writes CSV (to --out, default sweep.csv).
     #[arg(long)]
     pub(crate) env: PathBuf,
-    /// The strategy: depth_first (the paper's algorithm, at most r + 1 scans) or
-    /// nearest_frontier (Yamauchi-style frontiers, windows as frontiers); `all` in a sweep.
+    /// The strategy: depth_first (the paper's algorithm, at most r + 1 scans),
+    /// nearest_frontier (Yamauchi-style frontiers, windows as frontiers) or greedy_nbv (most
+    /// predicted new area per second of cost); `all` in a sweep.
     #[arg(long, default_value = "depth_first")]
     pub(crate) strategy: String,
     /// The start "X,Y" (default: the file's start, its first query point, or a point inside the

@@ -32,7 +32,7 @@ fn explore(
     cost: CostModel,
     seed: u64,
 ) -> anyhow::Result<Outcome> {
-    let Some(mut strat) = stopscan::strategy::polygon::by_name(strategy) else {
+    let Some(mut strat) = stopscan::strategy::polygon::by_name(strategy, &cost) else {
         let names: Vec<&str> = stopscan::strategy::polygon::REGISTRY.iter().map(|r| r.0).collect();
         bail!("unknown strategy {strategy:?}; use one of: {}", names.join(", "));
     };

@@ -146,7 +146,7 @@ fn a_thousand_vertex_office_floor() {
 }
 
 #[test]
-fn nearest_frontier_covers_everything_with_legal_moves() {
+fn baselines_cover_everything_with_legal_moves() {
     let cases = vec![
         spiral(6).unwrap(),
         star(7).unwrap(),
@@ -154,9 +154,11 @@ fn nearest_frontier_covers_everything_with_legal_moves() {
         office(4, 8, 2).unwrap(),
         pillar_forest(30.0, 20.0, 9, 5).unwrap(),
     ];
-    for inst in cases {
+    for (inst, name) in
+        cases.into_iter().flat_map(|i| [(i.clone(), "nearest_frontier"), (i, "greedy_nbv")])
+    {
         let world = PolygonWorld::new(inst.domain.clone()).unwrap();
-        let mut s = by_name("nearest_frontier").unwrap();
+        let mut s = by_name(name, &CostModel::default()).unwrap();
         let run =
             run(&world, inst.start, &CostModel::default(), s.as_mut(), &mut NoObserver).unwrap();
         let polys: Vec<_> = run.scans.iter().map(|s| s.region.polygon.clone()).collect();
@@ -166,5 +168,7 @@ fn nearest_frontier_covers_everything_with_legal_moves() {
         for w in run.path.windows(2) {
             assert!(world.can_move(w[0], w[1]));
         }
+        let regions: Vec<_> = run.scans.iter().map(|s| s.region.clone()).collect();
+        assert_eq!(open_windows(&regions), 0, "{name}");
     }
 }

@@ -201,7 +201,7 @@ fn sweep_one(
     };
     let outcome = (|| -> Result<PolygonRun, String> {
         let world = PolygonWorld::new(domain.clone()).map_err(|e| e.to_string())?;
-        let mut s = crate::strategy::polygon::by_name(strategy)
+        let mut s = crate::strategy::polygon::by_name(strategy, cost)
             .ok_or_else(|| format!("unknown strategy {strategy}"))?;
         run(&world, start, cost, s.as_mut(), &mut NoObserver).map_err(|e| e.to_string())
     })();

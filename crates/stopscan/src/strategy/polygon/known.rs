@@ -49,6 +49,13 @@ pub(super) struct Known {
     route: Vec<Point>,
 }
 
+impl View {
+    /// How many windows the view's region has.
+    pub(super) fn windows_len(&self) -> usize {
+        self.windows.len()
+    }
+}
+
 impl Known {
     /// Records a scan taken from inside the region of view `parent`; the target it was taken
     /// for counts as handled.
@@ -80,41 +87,46 @@ impl Known {
     /// view's region (less where the region is thinner), so the straight move there from the
     /// viewpoint is safe, and from it the whole far side of the window is seen.
     pub(super) fn next_target(&mut self, view: usize) -> Option<Target> {
+        (0..self.views[view].windows.len()).find_map(|k| self.window_target(view, k).map(|t| t.0))
+    }
+
+    /// Brings window `k` of `view` up to date with the views taken since it was last tested,
+    /// and returns the viewpoint for its first uncovered part with the window's total
+    /// uncovered length (metres), or `None` once it is explored.
+    pub(super) fn window_target(&mut self, view: usize, k: usize) -> Option<(Target, f64)> {
         let n = self.views.len();
-        for k in 0..self.views[view].windows.len() {
-            let (from, to, checked) = {
-                let w = &self.views[view].windows[k];
-                (w.from, w.to, w.checked)
-            };
-            if checked < n {
-                let mut covered = std::mem::take(&mut self.views[view].windows[k].covered);
-                for (j, v) in self.views.iter().enumerate().skip(checked) {
-                    if j != view {
-                        cover::side_cover(from, to, &v.polygon, v.bounds, &mut covered);
-                    }
+        let (from, to, checked) = {
+            let w = &self.views[view].windows[k];
+            (w.from, w.to, w.checked)
+        };
+        if checked < n {
+            let mut covered = std::mem::take(&mut self.views[view].windows[k].covered);
+            for (j, v) in self.views.iter().enumerate().skip(checked) {
+                if j != view {
+                    cover::side_cover(from, to, &v.polygon, v.bounds, &mut covered);
                 }
-                cover::merge(&mut covered);
-                let w = &mut self.views[view].windows[k];
-                w.covered = covered;
-                w.checked = n;
             }
-            if let Some(gap) = cover::first_gap(&self.views[view].windows[k].covered) {
-                let tm = 0.5 * (gap[0] + gap[1]);
-                let x = [from[0] + tm * (to[0] - from[0]), from[1] + tm * (to[1] - from[1])];
-                // Windows are radial, so the step goes sideways into the region (left of the
-                // window, which runs counter-clockwise around it), not toward the viewpoint:
-                // a move along the window's own ray would graze its reflex vertex.
-                let (dx, dy) = (to[0] - from[0], to[1] - from[1]);
-                let v = &self.views[view];
-                let at = [1e-6, 1e-8, 1e-10]
-                    .into_iter()
-                    .map(|e| [x[0] - e * dy, x[1] + e * dx])
-                    .find(|&z| ring_side(&v.polygon, z) == RingSide::Inside)
-                    .unwrap_or(v.at);
-                return Some(Target { at, view, window: k, gap });
-            }
+            cover::merge(&mut covered);
+            let w = &mut self.views[view].windows[k];
+            w.covered = covered;
+            w.checked = n;
         }
-        None
+        let covered = &self.views[view].windows[k].covered;
+        let gap = cover::first_gap(covered)?;
+        let (dx, dy) = (to[0] - from[0], to[1] - from[1]);
+        let open = (1.0 - covered.iter().map(|c| c[1] - c[0]).sum::<f64>()) * dx.hypot(dy);
+        let tm = 0.5 * (gap[0] + gap[1]);
+        let x = [from[0] + tm * dx, from[1] + tm * dy];
+        // Windows are radial, so the step goes sideways into the region (left of the window,
+        // which runs counter-clockwise around it), not toward the viewpoint: a move along the
+        // window's own ray would graze its reflex vertex.
+        let v = &self.views[view];
+        let at = [1e-6, 1e-8, 1e-10]
+            .into_iter()
+            .map(|e| [x[0] - e * dy, x[1] + e * dx])
+            .find(|&z| ring_side(&v.polygon, z) == RingSide::Inside)
+            .unwrap_or(v.at);
+        Some((Target { at, view, window: k, gap }, open))
     }
 
     /// Marks a target's window part as handled once a scan was taken for it, seen or not: a

@@ -3,17 +3,19 @@
 //! visibility regions.
 
 mod depth_first;
+mod greedy_nbv;
 mod known;
 mod nearest_frontier;
 
 pub use depth_first::DepthFirst;
+pub use greedy_nbv::GreedyNbv;
 pub use nearest_frontier::NearestFrontier;
 
 use serde::{Deserialize, Serialize};
 
 use crate::kernel::Point;
-use crate::protocol::Action;
 use crate::protocol::polygon::PolygonObservation;
+use crate::protocol::{Action, CostModel};
 
 /// What the driver tells a polygon strategy before asking for its next action.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
@@ -31,13 +33,16 @@ pub enum PolygonFeedback {
 pub const REGISTRY: &[(&str, &str)] = &[
     ("depth_first", "the paper's algorithm: depth-first over windows, at most r + 1 scans"),
     ("nearest_frontier", "frontier-based (Yamauchi): the nearest unexplored window by travel"),
+    ("greedy_nbv", "greedy next-best-view: most predicted new area per second of cost"),
 ];
 
-/// A fresh strategy by registry name.
-pub fn by_name(name: &str) -> Option<Box<dyn PolygonStrategy + Send>> {
+/// A fresh strategy by registry name; `cost` is the cost model of the run (strategies that
+/// price their choices use it).
+pub fn by_name(name: &str, cost: &CostModel) -> Option<Box<dyn PolygonStrategy + Send>> {
     match name {
         "depth_first" => Some(Box::new(DepthFirst::new())),
         "nearest_frontier" => Some(Box::new(NearestFrontier::new())),
+        "greedy_nbv" => Some(Box::new(GreedyNbv::new(*cost))),
         _ => None,
     }
 }
