@@ -124,6 +124,7 @@ fn bench_explore(a: &BenchArgs, g: &Global) -> anyhow::Result<()> {
         &inputs,
         &["depth_first"],
         &stopscan::protocol::CostModel::default(),
+        None,
         &|| {},
     );
     let secs = t.elapsed().as_secs_f64();

@@ -290,6 +290,16 @@ pub(crate) struct ExploreArgs {
     /// Write the scene (domain, regions, path, numbered scans) as SVG.
     #[arg(long)]
     pub(crate) svg: Option<PathBuf>,
+    /// Limit the sensor to R metres (the paper's restricted visibility polygons); the bound
+    /// becomes Lemma 4's and the lower bound area / (πR²).
+    #[arg(long)]
+    pub(crate) range: Option<f64>,
+    /// Compute the offline greedy reference for domains up to this many vertices.
+    #[arg(long, default_value_t = 1000)]
+    pub(crate) greedy_max_vertices: usize,
+    /// Compute the exact offline optimum (integer programming) up to this many vertices.
+    #[arg(long, default_value_t = 40)]
+    pub(crate) optimum_max_vertices: usize,
 }
 
 #[derive(Debug, Clone, Copy, PartialEq, Eq, ValueEnum)]

@@ -8,6 +8,7 @@ use stopscan::generate::{self, Instance};
 use stopscan::geometry::Domain;
 use stopscan::io::run_record::RunRecord;
 use stopscan::kernel::Point;
+use stopscan::offline::polygon::ReferenceLimits;
 use stopscan::protocol::CostModel;
 use stopscan::sim::NoObserver;
 use stopscan::world::polygon::PolygonWorld;
@@ -24,26 +25,40 @@ struct Outcome {
     svg: String,
 }
 
-fn explore(
-    name: &str,
-    domain: &Domain,
+/// One exploration to run.
+struct Job<'a> {
+    name: &'a str,
+    domain: &'a Domain,
     start: Point,
-    strategy: &str,
+    strategy: &'a str,
     cost: CostModel,
+    range: Option<f64>,
+    limits: ReferenceLimits,
     seed: u64,
-) -> anyhow::Result<Outcome> {
-    let Some(mut strat) = stopscan::strategy::polygon::by_name(strategy, &cost) else {
+}
+
+fn explore(j: &Job) -> anyhow::Result<Outcome> {
+    let Some(mut strat) = stopscan::strategy::polygon::by_name(j.strategy, &j.cost) else {
         let names: Vec<&str> = stopscan::strategy::polygon::REGISTRY.iter().map(|r| r.0).collect();
-        bail!("unknown strategy {strategy:?}; use one of: {}", names.join(", "));
+        bail!("unknown strategy {:?}; use one of: {}", j.strategy, names.join(", "));
     };
-    let world = PolygonWorld::new(domain.clone())?;
-    if world.scan(start).is_err() {
-        bail!("the start ({}, {}) is outside the free space", start[0], start[1]);
+    if let Some(r) = j.range
+        && !(r.is_finite() && r > 0.0)
+    {
+        bail!("--range must be a positive number of metres, got {r}");
     }
-    let run = stopscan::sim::polygon::run(&world, start, &cost, strat.as_mut(), &mut NoObserver)?;
+    let world = PolygonWorld::with_range(j.domain.clone(), j.range)?;
+    if world.scan(j.start).is_err() {
+        bail!("the start ({}, {}) is outside the free space", j.start[0], j.start[1]);
+    }
+    let run =
+        stopscan::sim::polygon::run(&world, j.start, &j.cost, strat.as_mut(), &mut NoObserver)?;
+    let vis = stopscan::algorithm::visibility::Visibility::new(j.domain.clone())?;
+    let refs = stopscan::offline::polygon::references(&vis, j.start, j.range, j.limits)?;
     let regions: Vec<_> = run.scans.iter().map(|s| s.region.clone()).collect();
-    let svg = stopscan::render::exploration_svg(domain, &regions, &run.path);
-    Ok(Outcome { record: RunRecord::polygon(name, domain, strategy, &cost, &run, seed), svg })
+    let svg = stopscan::render::exploration_svg(j.domain, &regions, &run.path);
+    let record = RunRecord::polygon(j.name, &world, j.strategy, &j.cost, &run, &refs, j.seed);
+    Ok(Outcome { record, svg })
 }
 
 fn summary(w: &mut dyn Write, o: &RunRecord) -> std::io::Result<()> {
@@ -55,7 +70,9 @@ fn summary(w: &mut dyn Write, o: &RunRecord) -> std::io::Result<()> {
         e.name, e.vertices, e.holes, e.reflex_vertices, e.free_area, o.strategy.name
     )?;
     let mut t = Table::new(&["quantity", "value"]);
-    let rows: [(&str, String); 13] = [
+    let b = &o.bounds;
+    let opt = |v: Option<usize>, why: &str| v.map_or_else(|| why.to_string(), |v| v.to_string());
+    let rows: [(&str, String); 16] = [
         ("scans", m.scans.to_string()),
         ("moves", m.moves.to_string()),
         ("distance (m)", num(Some(m.distance), 3)),
@@ -65,13 +82,16 @@ fn summary(w: &mut dyn Write, o: &RunRecord) -> std::io::Result<()> {
         ("total time (s)", num(Some(m.time), 3)),
         ("coverage", num(Some(m.coverage), 9)),
         ("windows left open", m.open_windows.to_string()),
-        ("bound r + 1 (paper)", o.bounds.scans_upper.to_string()),
-        ("lower bound on the optimum", o.bounds.scans_lower.to_string()),
-        ("scans / lower bound", num(Some(m.scans as f64 / o.bounds.scans_lower as f64), 2)),
+        ("upper bound (paper)", format!("{} ({})", b.scans_upper, b.scans_upper_rule)),
+        ("lower bound on the optimum", b.scans_lower.to_string()),
+        ("scans / lower bound", num(Some(m.scans as f64 / b.scans_lower as f64), 2)),
+        ("offline greedy reference", opt(b.greedy_reference, "not computed")),
+        ("offline optimum (ILP)", opt(b.optimum, "not computed")),
         (
-            "competitive ratio (optimum known)",
-            o.bounds.competitive_ratio.map_or("not computed".into(), |r| num(Some(r), 3)),
+            "competitive ratio (vs optimum)",
+            b.competitive_ratio.map_or("not computed".into(), |r| num(Some(r), 3)),
         ),
+        ("sensor range (m)", o.sensor.range.map_or("unlimited".into(), |r| num(Some(r), 3))),
     ];
     for (k, v) in rows {
         t.row(vec![k.into(), v]);
@@ -113,14 +133,16 @@ fn finish(
 pub(crate) fn main_job(g: &Global) -> anyhow::Result<()> {
     let env = stopscan::io::text_formats::parse_geojson(OFFICE, "built-in office floor")?;
     let start = env.queries.first().copied().context("the built-in office has a start")?;
-    let o = explore(
-        "office (built-in)",
-        &env.domain,
+    let o = explore(&Job {
+        name: "office (built-in)",
+        domain: &env.domain,
         start,
-        "depth_first",
-        CostModel::default(),
-        g.seed,
-    )?;
+        strategy: "depth_first",
+        cost: CostModel::default(),
+        range: None,
+        limits: ReferenceLimits::default(),
+        seed: g.seed,
+    })?;
     let dir = g.out.clone().unwrap_or_else(|| PathBuf::from("stopscan-out"));
     std::fs::create_dir_all(&dir).with_context(|| format!("cannot create {}", dir.display()))?;
     finish(g, &o, &dir.join("run.json"), Some(&dir.join("scene.svg")))
@@ -165,7 +187,9 @@ fn sweep_dir(a: &ExploreArgs, g: &Global) -> anyhow::Result<()> {
             .unwrap_or_else(|_| ProgressStyle::default_bar()),
     );
     let cost = cost_of(a.scan_time, a.move_time, a.speed)?;
-    let rows = stopscan::experiment::polygon::sweep(&inputs, &strategies, &cost, &|| bar.inc(1));
+    let rows = stopscan::experiment::polygon::sweep(&inputs, &strategies, &cost, a.range, &|| {
+        bar.inc(1);
+    });
     bar.finish_and_clear();
     let out = g.out.clone().unwrap_or_else(|| PathBuf::from("sweep.csv"));
     let tmp = out.with_extension("csv.tmp");
@@ -180,14 +204,23 @@ fn sweep_dir(a: &ExploreArgs, g: &Global) -> anyhow::Result<()> {
     std::fs::rename(&tmp, &out)?;
     let stdout = std::io::stdout();
     let mut w = stdout.lock();
-    let mut t =
-        Table::new(&["environment", "strategy", "r", "scans", "≤ r + 1", "distance", "coverage"]);
+    let mut t = Table::new(&[
+        "environment",
+        "strategy",
+        "r",
+        "scans",
+        "bound",
+        "within",
+        "distance",
+        "coverage",
+    ]);
     for r in &rows {
         t.row(vec![
             r.environment.clone(),
             r.strategy.clone(),
             r.reflex_vertices.to_string(),
             r.scans.to_string(),
+            r.scans_upper.to_string(),
             if r.error.is_empty() {
                 r.within_bound.to_string()
             } else {
@@ -215,14 +248,19 @@ pub(crate) fn run(a: &ExploreArgs, g: &Global) -> anyhow::Result<()> {
         },
     };
     let name = a.env.file_stem().and_then(|s| s.to_str()).unwrap_or("environment");
-    let o = explore(
+    let o = explore(&Job {
         name,
-        &env.domain,
+        domain: &env.domain,
         start,
-        &a.strategy,
-        cost_of(a.scan_time, a.move_time, a.speed)?,
-        g.seed,
-    )?;
+        strategy: &a.strategy,
+        cost: cost_of(a.scan_time, a.move_time, a.speed)?,
+        range: a.range,
+        limits: ReferenceLimits {
+            greedy_max_vertices: a.greedy_max_vertices,
+            optimum_max_vertices: a.optimum_max_vertices,
+        },
+        seed: g.seed,
+    })?;
     let out = g.out.clone().unwrap_or_else(|| PathBuf::from("run.json"));
     finish(g, &o, &out, a.svg.as_deref())
 }

@@ -107,6 +107,9 @@ fn explore_and_generate() {
     ]);
     assert_eq!(v["metrics"]["scans"], 6, "a spiral with 5 turns needs r + 1 = 6 views");
     assert_eq!(v["cost_model"]["scan_time"], 2.0);
+    // The offline optimum (integer programming) is r + 1 too: the algorithm is optimal here.
+    assert_eq!(v["bounds"]["optimum"], 6, "{}", v["bounds"]);
+    assert_eq!(v["bounds"]["competitive_ratio"], 1.0);
     assert!((f(&v["metrics"], "scan_time_total") - 12.0).abs() < 1e-12);
     assert!(dir.join("s.svg").exists() && out.exists());
     // A folder: a sweep with every strategy, as CSV.
@@ -135,8 +138,8 @@ fn explore_and_generate() {
     let csv_text = std::fs::read_to_string(&csv_path).unwrap();
     assert_eq!(
         csv_text.lines().count(),
-        1 + 2 * 2,
-        "header + 2 environments × 2 strategies:\n{csv_text}"
+        1 + 2 * stopscan::strategy::polygon::REGISTRY.len(),
+        "header + 2 environments × every strategy:\n{csv_text}"
     );
     assert!(csv_text.lines().next().unwrap().contains("scans_upper"));
     let b = json(&["bench", "explore", "--n", "20"]);

@@ -10,7 +10,7 @@
 //! rounded once), and each piece is classified once: by an exact point-in-polygon test at its
 //! middle, or, where the piece runs along a polygon edge, by the side the polygon lies on.
 
-use crate::algorithm::visibility::VisibilityRegion;
+use crate::algorithm::visibility::{BoundaryPiece, VisibilityRegion};
 use crate::kernel::{Point, RingSide, orient_sign, ring_side};
 
 /// Parameter intervals `[t0, t1] ⊂ [0, 1]`, sorted and disjoint.
@@ -123,31 +123,81 @@ pub fn merge(iv: &mut Intervals) {
     *iv = out;
 }
 
-/// The first gap of merged intervals in `[0, 1]` longer than [`GAP_TOLERANCE`].
-pub fn first_gap(iv: &[[f64; 2]]) -> Option<[f64; 2]> {
-    let mut at = 0.0;
-    for &[t0, t1] in iv {
-        if t0 > at + GAP_TOLERANCE {
-            return Some([at, t0]);
-        }
-        at = f64::max(at, t1);
-    }
-    (at < 1.0 - GAP_TOLERANCE).then_some([at, 1.0])
+/// The first gap of merged intervals in `[0, 1]` longer than `tol`.
+pub fn first_gap(iv: &[[f64; 2]], tol: f64) -> Option<[f64; 2]> {
+    gaps(iv, tol).next()
 }
 
-/// The windows of `regions` whose far side is not wholly covered by the other regions: zero
-/// certifies that the union of the regions is the whole connected free space (the paper's
-/// Lemma 2: a point not seen would be reached from the viewpoints only by crossing a window
-/// of the union), independently of area arithmetic.
+/// The gaps of merged intervals in `[0, 1]` longer than `tol`.
+pub fn gaps(iv: &[[f64; 2]], tol: f64) -> impl Iterator<Item = [f64; 2]> + '_ {
+    let mut at = 0.0;
+    iv.iter().chain(std::iter::once(&[1.0, 1.0])).filter_map(move |&[t0, t1]| {
+        let gap = (t0 > at + tol).then_some([at, t0]);
+        at = f64::max(at, t1);
+        gap
+    })
+}
+
+/// Parts of a frontier shorter than this many metres, for a range circle of radius R, times
+/// R, are not worth a scan: range regions reach their strategies as polygons whose arcs are
+/// chords with sagitta [`RANGE_CHORD_TOLERANCE`]·R, so where two circles cross, each chord
+/// is left uncovered by the other's polygon over a length of a few sagittas. Those slivers
+/// are sagitta-thin, so the area they leave is far below the 1e-6 coverage target.
+pub const RANGE_GAP: f64 = 1e-3;
+
+/// The sagitta of the chords that replace arcs, relative to the range.
+pub const RANGE_CHORD_TOLERANCE: f64 = 1e-4;
+
+/// The gap tolerance (in the piece's own parameter) for a frontier piece of a region seen
+/// from `viewpoint`: [`GAP_TOLERANCE`] for windows, [`RANGE_GAP`]·R for range chords.
+pub fn tolerance(viewpoint: Point, piece: &BoundaryPiece) -> f64 {
+    match *piece {
+        BoundaryPiece::Frontier { from, to } => {
+            let r = (from[0] - viewpoint[0]).hypot(from[1] - viewpoint[1]);
+            let len = (to[0] - from[0]).hypot(to[1] - from[1]);
+            if len > 0.0 { (RANGE_GAP * r / len).max(GAP_TOLERANCE) } else { 1.0 }
+        }
+        _ => GAP_TOLERANCE,
+    }
+}
+
+/// The uncovered parts of the frontiers (windows and range chords) of `regions` — parts of
+/// their far side that no other region covers — whose probe point
+/// ([`open_window_points`]) satisfies `inside`, normally "lies in the interior of the free
+/// space". Zero certifies that the union of the regions is the whole connected free space
+/// (the paper's Lemma 2: a point not seen would be reached from the viewpoints only by
+/// crossing a frontier of the union), independently of area arithmetic. A part whose probe
+/// falls outside the free space is a sliver against a wall, thinner there than a millionth
+/// of the window's length (a window that runs along a wall within rounding).
 ///
 /// # Complexity
-/// O(w · k · n) for w windows, k regions of n vertices, with a bounding-box rejection first.
-pub fn open_windows(regions: &[VisibilityRegion]) -> usize {
+/// O(w · k · n) for w frontiers, k regions of n vertices, with a bounding-box rejection first.
+pub fn open_windows(regions: &[VisibilityRegion], inside: impl Fn(Point) -> bool) -> usize {
+    open_window_points(regions).into_iter().filter(|&p| inside(p)).count()
+}
+
+/// A point just beyond the middle of every uncovered part of every window of `regions` (a
+/// millionth of the window's length past it): points no region sees, or on the domain's
+/// boundary where a window grazes it. Used to refine witness sets.
+pub fn open_window_points(regions: &[VisibilityRegion]) -> Vec<Point> {
+    let mut out = Vec::new();
+    for_each_window(regions, |a, b, tol, iv| {
+        let (dx, dy) = (b[0] - a[0], b[1] - a[1]);
+        for [g0, g1] in gaps(iv, tol) {
+            let t = 0.5 * (g0 + g1);
+            out.push([a[0] + t * dx + 1e-6 * dy, a[1] + t * dy - 1e-6 * dx]);
+        }
+    });
+    out
+}
+
+/// Calls `f(from, to, tolerance, covered)` for every frontier (window or range chord) of every
+/// region, with the merged parts of its far side that the other regions cover.
+fn for_each_window(regions: &[VisibilityRegion], mut f: impl FnMut(Point, Point, f64, &Intervals)) {
     let boxes: Vec<[Point; 2]> = regions.iter().map(|r| bounds_of(&r.polygon)).collect();
-    let mut open = 0;
     let mut iv = Vec::new();
     for (i, r) in regions.iter().enumerate() {
-        for w in r.windows() {
+        for w in r.frontiers() {
             let (a, b) = w.ends();
             iv.clear();
             for (j, o) in regions.iter().enumerate() {
@@ -156,12 +206,9 @@ pub fn open_windows(regions: &[VisibilityRegion]) -> usize {
                 }
             }
             merge(&mut iv);
-            if first_gap(&iv).is_some() {
-                open += 1;
-            }
+            f(a, b, tolerance(r.viewpoint, w), &iv);
         }
     }
-    open
 }
 
 /// The bounding box of a point set, `[min, max]`.
@@ -222,9 +269,12 @@ mod tests {
 
     #[test]
     fn gaps_are_found_and_tiny_ones_closed() {
-        assert_eq!(first_gap(&[[0.0, 0.5], [0.5 + 1e-11, 1.0]]), None);
-        assert_eq!(first_gap(&[[0.0, 0.4], [0.6, 1.0]]), Some([0.4, 0.6]));
-        assert_eq!(first_gap(&[]), Some([0.0, 1.0]));
+        let mut tiny = vec![[0.0, 0.5], [0.5 + 1e-11, 1.0]];
+        merge(&mut tiny);
+        assert_eq!(first_gap(&tiny, GAP_TOLERANCE), None);
+        assert_eq!(first_gap(&[[0.0, 0.4], [0.6, 1.0]], GAP_TOLERANCE), Some([0.4, 0.6]));
+        assert_eq!(first_gap(&[[0.0, 0.4], [0.6, 1.0]], 0.3), None);
+        assert_eq!(first_gap(&[], GAP_TOLERANCE), Some([0.0, 1.0]));
         let mut iv = vec![[0.6, 1.0], [0.0, 0.3], [0.2, 0.61]];
         merge(&mut iv);
         assert_eq!(iv, vec![[0.0, 1.0]]);

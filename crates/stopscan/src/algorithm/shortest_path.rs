@@ -26,6 +26,12 @@ use crate::kernel::{Point, orient_sign};
 /// # Complexity
 /// O(triangles crossed).
 pub fn segment_is_free(mesh: &Mesh, a: Point, b: Point) -> bool {
+    walk(mesh, a, b, |_| {})
+}
+
+/// [`segment_is_free`], calling `on_vertex` with every domain vertex the segment passes
+/// exactly through strictly after `a`, in order (the walk goes on from each).
+pub(crate) fn walk(mesh: &Mesh, a: Point, b: Point, mut on_vertex: impl FnMut(u32)) -> bool {
     let pts = mesh.points();
     let tri = &mesh.tri;
     let mut t = match mesh.locate(a) {
@@ -62,6 +68,7 @@ pub fn segment_is_free(mesh: &Mesh, a: Point, b: Point) -> bool {
         let ahead = |x: Point| (x[0] - a[0]) * (b[0] - a[0]) + (x[1] - a[1]) * (b[1] - a[1]) > 0.0;
         if let Some(k) = (0..3).find(|&k| s[k] == 0 && p[k] != a && ahead(p[k])) {
             a = p[k];
+            on_vertex(v[k]);
             match fan_triangle(mesh, v[k], b) {
                 Some(u) => {
                     t = u;

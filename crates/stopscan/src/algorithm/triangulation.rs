@@ -203,13 +203,6 @@ impl Mesh {
         if v + 1 == e { s } else { v + 1 }
     }
 
-    /// The vertex before `v` in its ring.
-    pub(crate) fn ring_prev(&self, v: u32) -> u32 {
-        let ring = self.ring_start.partition_point(|&s| s <= v) - 1;
-        let (s, e) = (self.ring_start[ring], self.ring_start[ring + 1]);
-        if v == s { e - 1 } else { v - 1 }
-    }
-
     /// Locates a point exactly.
     pub fn locate(&self, p: Point) -> MeshLocation {
         if !(p[0].is_finite() && p[1].is_finite()) {

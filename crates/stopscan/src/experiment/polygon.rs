@@ -5,6 +5,7 @@ use super::{ExperimentError, Reproduction, Row};
 use crate::algorithm::region::Region;
 use crate::generate::{spiral, star};
 use crate::io::run_record::RunRecord;
+use crate::offline::polygon::References;
 use crate::protocol::CostModel;
 use crate::sim::NoObserver;
 use crate::sim::polygon::{PolygonRun, run};
@@ -138,9 +139,9 @@ pub struct SweepRow {
     pub coverage: f64,
     /// Windows no other scan looks through (0: the free space was seen whole).
     pub open_windows: usize,
-    /// The paper's r + 1.
+    /// The paper's bound: r + 1, or Lemma 4's with a range.
     pub scans_upper: usize,
-    /// Whether scans ≤ r + 1.
+    /// Whether scans are within it.
     pub within_bound: bool,
     /// Empty, or why the run failed.
     pub error: String,
@@ -150,12 +151,13 @@ pub struct SweepRow {
 pub type SweepInput = (String, crate::geometry::Domain, crate::kernel::Point);
 
 /// Explores every input with every strategy, in parallel (rayon); rows come back in input
-/// order, strategies in the given order, whatever the thread count. `tick` is called after
-/// each run (for a progress bar).
+/// order, strategies in the given order, whatever the thread count. `range` limits the
+/// sensor. `tick` is called after each run (for a progress bar).
 pub fn sweep(
     inputs: &[SweepInput],
     strategies: &[&str],
     cost: &CostModel,
+    range: Option<f64>,
     tick: &(dyn Fn() + Sync),
 ) -> Vec<SweepRow> {
     use rayon::prelude::*;
@@ -164,7 +166,7 @@ pub fn sweep(
     jobs.par_iter()
         .map(|&(i, s)| {
             let (name, domain, start) = &inputs[i];
-            let row = sweep_one(name, domain, *start, strategies[s], cost);
+            let row = sweep_one(name, domain, *start, strategies[s], cost, range);
             tick();
             row
         })
@@ -177,8 +179,10 @@ fn sweep_one(
     start: crate::kernel::Point,
     strategy: &str,
     cost: &CostModel,
+    range: Option<f64>,
 ) -> SweepRow {
     let r = domain.reflex_vertices().len();
+    let (upper, _) = crate::offline::polygon::upper_bound(domain, range);
     let mut row = SweepRow {
         environment: name.into(),
         strategy: strategy.into(),
@@ -195,19 +199,25 @@ fn sweep_one(
         travel_time_total: 0.0,
         coverage: 0.0,
         open_windows: 0,
-        scans_upper: r + 1,
+        scans_upper: upper,
         within_bound: false,
         error: String::new(),
     };
-    let outcome = (|| -> Result<PolygonRun, String> {
-        let world = PolygonWorld::new(domain.clone()).map_err(|e| e.to_string())?;
+    let outcome = (|| -> Result<RunRecord, String> {
+        let world = PolygonWorld::with_range(domain.clone(), range).map_err(|e| e.to_string())?;
         let mut s = crate::strategy::polygon::by_name(strategy, cost)
             .ok_or_else(|| format!("unknown strategy {strategy}"))?;
-        run(&world, start, cost, s.as_mut(), &mut NoObserver).map_err(|e| e.to_string())
+        let run =
+            run(&world, start, cost, s.as_mut(), &mut NoObserver).map_err(|e| e.to_string())?;
+        let refs = References {
+            lower: crate::offline::polygon::lower_bound(domain, range),
+            ..References::default()
+        };
+        Ok(RunRecord::polygon(name, &world, strategy, cost, &run, &refs, 0))
     })();
     match outcome {
-        Ok(run) => {
-            let m = RunRecord::polygon(name, domain, strategy, cost, &run, 0).metrics;
+        Ok(rec) => {
+            let m = rec.metrics;
             row.scans = m.scans;
             row.moves = m.moves;
             row.distance = m.distance;
@@ -217,7 +227,7 @@ fn sweep_one(
             row.travel_time_total = m.travel_time_total;
             row.coverage = m.coverage;
             row.open_windows = m.open_windows;
-            row.within_bound = run.tally.scans as usize <= r + 1;
+            row.within_bound = m.scans as usize <= upper;
         }
         Err(e) => row.error = e,
     }

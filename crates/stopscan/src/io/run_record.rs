@@ -4,10 +4,11 @@
 use serde::{Deserialize, Serialize};
 
 use crate::algorithm::region::Region;
-use crate::geometry::Domain;
 use crate::kernel::Point;
+use crate::offline::polygon::{References, upper_bound};
 use crate::protocol::CostModel;
 use crate::sim::polygon::PolygonRun;
+use crate::world::polygon::PolygonWorld;
 
 /// `"environment"`.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
@@ -82,8 +83,9 @@ pub struct Metrics {
     /// `covered_area / free_area` (the union's area is measured by i_overlay, good to about
     /// 1e-8 relative, so it can exceed 1 by that much).
     pub coverage: f64,
-    /// Windows of the scanned regions whose far side no other scan covers (exact test up to
-    /// rounding of cut points): 0 certifies that the whole free space was seen.
+    /// Parts of windows (and range chords) of the scanned regions whose far side no other scan
+    /// covers and lies in the free space (exact test up to rounding of cut points): 0
+    /// certifies that the whole free space was seen.
     pub open_windows: usize,
 }
 
@@ -96,6 +98,17 @@ pub struct Bounds {
     pub scans_lower: usize,
     /// Scans divided by the optimum, when the optimum is known (null otherwise).
     pub competitive_ratio: Option<f64>,
+    /// Which bound `scans_upper` is (Theorem 1's r + 1, or Lemma 4's with a range).
+    #[serde(default)]
+    pub scans_upper_rule: String,
+    /// Views of the offline greedy reference (start and vertex or triangle candidates, each
+    /// seen from an earlier one), when computed.
+    #[serde(default)]
+    pub greedy_reference: Option<usize>,
+    /// The exact minimum number of views over the same candidates (integer programming),
+    /// when computed and certified.
+    #[serde(default)]
+    pub optimum: Option<usize>,
 }
 
 /// A whole run record.
@@ -124,19 +137,25 @@ pub struct RunRecord {
 }
 
 impl RunRecord {
-    /// The record of a single-robot polygon run.
+    /// The record of a single-robot polygon run in `world`, measured against `refs`.
     pub fn polygon(
         name: &str,
-        domain: &Domain,
+        world: &PolygonWorld,
         strategy: &str,
         cost: &CostModel,
         run: &PolygonRun,
+        refs: &References,
         seed: u64,
     ) -> Self {
+        let domain = world.domain();
+        let (upper, rule) = upper_bound(domain, world.range());
+        let optimum = refs.optimum.as_ref().filter(|o| o.certified).map(|o| o.viewpoints.len());
         let polys: Vec<Vec<Point>> = run.scans.iter().map(|s| s.region.polygon.clone()).collect();
         let covered = Region::union_all(&polys).area();
         let regions: Vec<_> = run.scans.iter().map(|s| s.region.clone()).collect();
-        let open_windows = crate::algorithm::cover::open_windows(&regions);
+        let open_windows = crate::algorithm::cover::open_windows(&regions, |p| {
+            domain.locate(p) == crate::geometry::Location::Interior
+        });
         let free = domain.area();
         let r = domain.reflex_vertices().len();
         Self {
@@ -150,7 +169,7 @@ impl RunRecord {
             },
             strategy: StrategyInfo { name: strategy.into(), params: serde_json::json!({}) },
             cost_model: *cost,
-            sensor: SensorInfo { range: None },
+            sensor: SensorInfo { range: world.range() },
             robots: vec![RobotRecord {
                 id: 0,
                 path: run.path.clone(),
@@ -173,7 +192,18 @@ impl RunRecord {
                 coverage: covered / free,
                 open_windows,
             },
-            bounds: Bounds { scans_upper: r + 1, scans_lower: 1, competitive_ratio: None },
+            bounds: Bounds {
+                scans_upper: upper,
+                scans_lower: refs.lower.max(optimum.unwrap_or(0)),
+                competitive_ratio: optimum.map(|o| run.tally.scans as f64 / o as f64),
+                scans_upper_rule: rule.into(),
+                greedy_reference: refs
+                    .greedy
+                    .as_ref()
+                    .filter(|g| g.certified)
+                    .map(|g| g.viewpoints.len()),
+                optimum,
+            },
             seed,
             stopscan_version: crate::VERSION.into(),
         }

@@ -1,3 +1,4 @@
 //! Optima and bounds against which online strategies are measured.
 
 pub mod corner;
+pub mod polygon;

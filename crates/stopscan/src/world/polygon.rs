@@ -1,5 +1,6 @@
 //! The polygon world: the true environment, hidden from strategies, and its sensor.
 
+use crate::algorithm::cover;
 use crate::algorithm::shortest_path::segment_is_free;
 use crate::algorithm::visibility::{Visibility, VisibilityError};
 use crate::geometry::Domain;
@@ -10,6 +11,7 @@ use crate::protocol::polygon::PolygonObservation;
 #[derive(Debug)]
 pub struct PolygonWorld {
     vis: Visibility,
+    range: Option<f64>,
 }
 
 impl PolygonWorld {
@@ -18,7 +20,21 @@ impl PolygonWorld {
     /// # Errors
     /// [`VisibilityError`] if it cannot be triangulated (never for a valid domain).
     pub fn new(domain: Domain) -> Result<Self, VisibilityError> {
-        Ok(Self { vis: Visibility::new(domain)? })
+        Ok(Self { vis: Visibility::new(domain)?, range: None })
+    }
+
+    /// Preprocesses a domain for a sensor that sees only within `range` metres (the paper's
+    /// restricted visibility polygons); `None` sees without limit.
+    ///
+    /// # Errors
+    /// [`VisibilityError`] if it cannot be triangulated (never for a valid domain).
+    pub fn with_range(domain: Domain, range: Option<f64>) -> Result<Self, VisibilityError> {
+        Ok(Self { vis: Visibility::new(domain)?, range })
+    }
+
+    /// The sensor's range, if limited.
+    pub fn range(&self) -> Option<f64> {
+        self.range
     }
 
     /// The domain (for the simulator and the metrics; strategies never get it).
@@ -26,12 +42,17 @@ impl PolygonWorld {
         self.vis.domain()
     }
 
-    /// The sensor: a full visibility scan from `at`.
+    /// The sensor: a visibility scan from `at`. With a range limit the region's arcs come as
+    /// chords (sagitta [`cover::RANGE_CHORD_TOLERANCE`]·R) labelled as frontiers.
     ///
     /// # Errors
     /// [`VisibilityError::Outside`] if `at` is not in the free space.
     pub fn scan(&self, at: Point) -> Result<PolygonObservation, VisibilityError> {
-        Ok(PolygonObservation { at, region: self.vis.query(at)? })
+        let region = match self.range {
+            None => self.vis.query(at)?,
+            Some(r) => self.vis.query_range(at, r)?.to_region(r * cover::RANGE_CHORD_TOLERANCE),
+        };
+        Ok(PolygonObservation { at, region })
     }
 
     /// A point strictly inside the free space (the centroid of a triangle of the mesh), for

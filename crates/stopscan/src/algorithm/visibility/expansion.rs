@@ -13,12 +13,16 @@
 //! one ray from `q` and is a window.
 
 use super::{BoundaryPiece, VisibilityError, VisibilityRegion};
+use crate::algorithm::shortest_path::walk;
 use crate::algorithm::triangulation::{Mesh, MeshLocation, NONE};
-use crate::kernel::{Point, on_segment, orient_sign};
+use crate::kernel::{Point, orient_sign};
 
 /// Reusable buffers for [`expand`].
 #[derive(Debug, Default, Clone)]
 pub struct Scratch {
+    /// Whether a vertex was met exactly on a cone's bounding ray (only then can a gap hold
+    /// domain edges seen edge-on, and gaps are walked).
+    collinear: bool,
     stack: Vec<(u32, u8, u32, u32)>,
     starts: Vec<(u32, u8, u32, u32)>,
     pieces: Vec<Piece>,
@@ -106,18 +110,20 @@ pub fn expand(
     if let Some(p) = lead {
         scratch.pieces.push(p);
     }
+    scratch.collinear = false;
     for k in 0..scratch.starts.len() {
         let s = scratch.starts[k];
-        run(mesh, q, s, &mut scratch.stack, &mut scratch.pieces);
+        scratch.collinear |= run(mesh, q, s, &mut scratch.stack, &mut scratch.pieces);
     }
     if let Some(p) = tail {
         scratch.pieces.push(p);
     }
-    assemble(mesh, q, &scratch.pieces, out);
+    assemble(mesh, q, &scratch.pieces, scratch.collinear, out);
     Ok(())
 }
 
-/// The depth-first expansion from one start cone, appending pieces in CCW order.
+/// The depth-first expansion from one start cone, appending pieces in CCW order. Returns
+/// whether a vertex lay exactly on a bounding ray.
 #[inline]
 fn run(
     mesh: &Mesh,
@@ -125,7 +131,8 @@ fn run(
     start: (u32, u8, u32, u32),
     stack: &mut Vec<(u32, u8, u32, u32)>,
     pieces: &mut Vec<Piece>,
-) {
+) -> bool {
+    let mut collinear = false;
     let (tri, nbr, mirror, pts) = (&mesh.tri, &mesh.nbr, &mesh.mirror, mesh.points());
     stack.push(start);
     while let Some((t, k, r, l)) = stack.pop() {
@@ -137,6 +144,7 @@ fn run(
             let (per, pel) = (pts[er as usize], pts[el as usize]);
             let full_r = r == er || orient_sign(q, pr, per) == 0;
             let full_l = l == el || orient_sign(q, pl, pel) == 0;
+            collinear |= (r != er && full_r) || (l != el && full_l);
             let from = if full_r { per } else { ray_hit(q, pr, per, pel) };
             let to = if full_l { pel } else { ray_hit(q, pl, per, pel) };
             pieces.push(Piece { from, to, edge_start: er, full: full_r && full_l });
@@ -146,12 +154,16 @@ fn run(
         let c = tri[n as usize][m];
         let pc = pts[c as usize];
         let sr = orient_sign(q, pts[r as usize], pc);
+        if sr == 0 {
+            collinear = true;
+        }
         if sr <= 0 {
             // c on or right of R: only the left sub-side (c, e_l) is seen.
             stack.push((n, ((m + 2) % 3) as u8, r, l));
             continue;
         }
         let sl = orient_sign(q, pts[l as usize], pc);
+        collinear |= sl == 0;
         if sl >= 0 {
             // c on or left of L: only the right sub-side (e_r, c) is seen.
             stack.push((n, ((m + 1) % 3) as u8, r, l));
@@ -160,6 +172,7 @@ fn run(
             stack.push((n, ((m + 1) % 3) as u8, r, c));
         }
     }
+    collinear
 }
 
 /// Where the ray from `q` through `through` meets the line through `a` and `b`.
@@ -172,7 +185,7 @@ fn ray_hit(q: Point, through: Point, a: Point, b: Point) -> Point {
     [q[0] + t * dx, q[1] + t * dy]
 }
 
-fn assemble(mesh: &Mesh, q: Point, pieces: &[Piece], out: &mut VisibilityRegion) {
+fn assemble(mesh: &Mesh, q: Point, pieces: &[Piece], collinear: bool, out: &mut VisibilityRegion) {
     let n = pieces.len();
     let pts = mesh.points();
     for (i, p) in pieces.iter().enumerate() {
@@ -195,7 +208,13 @@ fn assemble(mesh: &Mesh, q: Point, pieces: &[Piece], out: &mut VisibilityRegion)
             let end = mesh.ring_next(p.edge_start);
             let va = (pts[end as usize] == p.to).then_some(end);
             let vb = (pts[np.edge_start as usize] == np.from).then_some(np.edge_start);
-            gap(mesh, q, (p.to, va), (np.from, vb), out);
+            if collinear
+                || va.zip(vb).is_some_and(|(v, w)| mesh.ring_next(w) == v || mesh.ring_next(v) == w)
+            {
+                gap(mesh, q, (p.to, va), (np.from, vb), out);
+            } else {
+                window(q, p.to, np.from, out);
+            }
         }
     }
     if out.polygon.len() > 1 && out.polygon.first() == out.polygon.last() {
@@ -206,9 +225,10 @@ fn assemble(mesh: &Mesh, q: Point, pieces: &[Piece], out: &mut VisibilityRegion)
 /// Labels the gap from `a` to `b` (on one ray from `q`) between two consecutive pieces.
 ///
 /// Domain edges collinear with the ray are seen edge-on and never entered by the expansion, so
-/// they show up inside gaps: those parts are edges, grazed, and only what is left between them
-/// is a window. Without this an edge seen edge-on would be reported as a window whose far
-/// side is outside the domain, and an explorer would try to look through it forever.
+/// they show up inside gaps: those parts are edges, grazed, and only the parts between them
+/// are windows. Without this an edge seen edge-on would be reported as a window whose far
+/// side is outside the domain, and an explorer would try to look through it forever. The
+/// gap is walked through the mesh (exactly) to find the vertices on it.
 fn gap(
     mesh: &Mesh,
     q: Point,
@@ -217,40 +237,39 @@ fn gap(
     out: &mut VisibilityRegion,
 ) {
     let pts = mesh.points();
-    let edge_between = |v: u32, w: u32| {
-        if mesh.ring_next(v) == w { mesh.edge_of(v) } else { mesh.edge_of(w) }
-    };
-    // Follow collinear domain edges from one end toward the other.
-    let walk = |mut at: (Point, Option<u32>), goal: Point| {
-        let mut steps = Vec::new();
-        let mut last = None;
-        while let Some(v) = at.1 {
-            if at.0 == goal {
-                break;
-            }
-            let next = [mesh.ring_next(v), mesh.ring_prev(v)].into_iter().find(|&w| {
-                Some(w) != last
-                    && pts[w as usize] != at.0
-                    && on_segment(at.0, goal, pts[w as usize])
-            });
-            let Some(w) = next else { break };
-            steps.push((at.0, pts[w as usize], edge_between(v, w)));
-            last = Some(v);
-            at = (pts[w as usize], Some(w));
+    // Walk from an end that is a vertex: a constructed end may round to just outside.
+    let backward = va.is_none() && vb.is_some();
+    let (s, e) = if backward { ((b, vb), (a, va)) } else { ((a, va), (b, vb)) };
+    let mut stops: Vec<(Point, Option<u32>)> = vec![s];
+    walk(mesh, s.0, e.0, |v| {
+        if pts[v as usize] != e.0 {
+            stops.push((pts[v as usize], Some(v)));
         }
-        (steps, at.0)
-    };
-    let (front, mid_a) = walk((a, va), b);
-    let (back, mid_b) = if mid_a == b { (Vec::new(), b) } else { walk((b, vb), mid_a) };
-    for &(from, to, edge) in &front {
-        out.boundary.push(BoundaryPiece::Edge { from, to, edge });
+    });
+    stops.push(e);
+    if backward {
+        stops.reverse();
     }
-    if mid_a != mid_b {
-        let d = |x: Point| (x[0] - q[0]).powi(2) + (x[1] - q[1]).powi(2);
-        let (reflex, far) = if d(mid_a) <= d(mid_b) { (mid_a, mid_b) } else { (mid_b, mid_a) };
-        out.boundary.push(BoundaryPiece::Window { from: mid_a, to: mid_b, reflex, far });
+    for s in stops.windows(2) {
+        let ((p0, v0), (p1, v1)) = (s[0], s[1]);
+        if p0 == p1 {
+            continue;
+        }
+        match (v0, v1) {
+            (Some(v), Some(w)) if mesh.ring_next(v) == w => {
+                out.boundary.push(BoundaryPiece::Edge { from: p0, to: p1, edge: mesh.edge_of(v) });
+            }
+            (Some(v), Some(w)) if mesh.ring_next(w) == v => {
+                out.boundary.push(BoundaryPiece::Edge { from: p0, to: p1, edge: mesh.edge_of(w) });
+            }
+            _ => window(q, p0, p1, out),
+        }
     }
-    for &(to, from, edge) in back.iter().rev() {
-        out.boundary.push(BoundaryPiece::Edge { from, to, edge });
-    }
+}
+
+/// A window from `a` to `b` on a ray from `q`; the end nearer `q` is its reflex vertex.
+fn window(q: Point, a: Point, b: Point, out: &mut VisibilityRegion) {
+    let d = |x: Point| (x[0] - q[0]).powi(2) + (x[1] - q[1]).powi(2);
+    let (reflex, far) = if d(a) <= d(b) { (a, b) } else { (b, a) };
+    out.boundary.push(BoundaryPiece::Window { from: a, to: b, reflex, far });
 }

@@ -57,6 +57,15 @@ pub enum BoundaryPiece {
         /// The far end.
         far: Point,
     },
+    /// A chord of the range circle, in a range-limited region made polygonal
+    /// ([`range::RangeRegion::to_region`]): the region ends here because of the range, and
+    /// the free space may go on beyond.
+    Frontier {
+        /// Start.
+        from: Point,
+        /// End.
+        to: Point,
+    },
 }
 
 impl BoundaryPiece {
@@ -65,7 +74,8 @@ impl BoundaryPiece {
         match *self {
             Self::Edge { from, to, .. }
             | Self::Partial { from, to, .. }
-            | Self::Window { from, to, .. } => (from, to),
+            | Self::Window { from, to, .. }
+            | Self::Frontier { from, to } => (from, to),
         }
     }
 }
@@ -91,6 +101,13 @@ impl VisibilityRegion {
     /// The windows (constructed edges).
     pub fn windows(&self) -> impl Iterator<Item = &BoundaryPiece> {
         self.boundary.iter().filter(|b| matches!(b, BoundaryPiece::Window { .. }))
+    }
+
+    /// Where the region ends inside the free space: windows and range chords.
+    pub fn frontiers(&self) -> impl Iterator<Item = &BoundaryPiece> {
+        self.boundary
+            .iter()
+            .filter(|b| matches!(b, BoundaryPiece::Window { .. } | BoundaryPiece::Frontier { .. }))
     }
 }
 

@@ -109,6 +109,39 @@ impl RangeRegion {
         out
     }
 
+    /// The region as a polygon with labelled pieces, arcs replaced by inscribed chords
+    /// (sagitta at most `tolerance`) labelled [`BoundaryPiece::Frontier`]: what a
+    /// range-limited scan hands an exploration strategy.
+    pub fn to_region(&self, tolerance: f64) -> VisibilityRegion {
+        let mut boundary = Vec::new();
+        for piece in &self.boundary {
+            match piece {
+                RangePiece::Straight(b) => boundary.push(*b),
+                RangePiece::Arc(a) => {
+                    let one = RangeRegion {
+                        viewpoint: self.viewpoint,
+                        radius: self.radius,
+                        boundary: vec![RangePiece::Arc(*a)],
+                    };
+                    let mut pts = one.to_polygon(tolerance);
+                    if a.sweep >= std::f64::consts::TAU {
+                        pts.push(pts[0]);
+                    } else if pts.last() != Some(&a.to) {
+                        pts.push(a.to);
+                    }
+                    for w in pts.windows(2) {
+                        boundary.push(BoundaryPiece::Frontier { from: w[0], to: w[1] });
+                    }
+                }
+            }
+        }
+        VisibilityRegion {
+            viewpoint: self.viewpoint,
+            polygon: self.to_polygon(tolerance),
+            boundary,
+        }
+    }
+
     /// The arcs.
     pub fn arcs(&self) -> impl Iterator<Item = &Arc> {
         self.boundary.iter().filter_map(|p| if let RangePiece::Arc(a) = p { Some(a) } else { None })
@@ -162,12 +195,12 @@ pub fn clip(full: &VisibilityRegion, r: f64) -> RangeRegion {
             BoundaryPiece::Partial { edge, .. } => {
                 BoundaryPiece::Partial { from: p0, to: p1, edge }
             }
-            BoundaryPiece::Window { reflex, far, .. } => {
+            BoundaryPiece::Window { .. } => {
                 let d = |x: Point| (x[0] - q[0]).hypot(x[1] - q[1]);
                 let (near, farp) = if d(p0) <= d(p1) { (p0, p1) } else { (p1, p0) };
-                let _ = (reflex, far);
                 BoundaryPiece::Window { from: p0, to: p1, reflex: near, far: farp }
             }
+            BoundaryPiece::Frontier { .. } => BoundaryPiece::Frontier { from: p0, to: p1 },
         };
         kept.push((piece, t0 > 0.0, t1 < 1.0));
     }

@@ -26,6 +26,8 @@ pub(super) struct View {
 struct Window {
     from: Point,
     to: Point,
+    /// Uncovered parts shorter than this (in parameter) are ignored ([`cover::tolerance`]).
+    tol: f64,
     covered: Intervals,
     checked: usize,
 }
@@ -68,8 +70,9 @@ impl Known {
             .boundary
             .iter()
             .filter_map(|b| match *b {
-                BoundaryPiece::Window { from, to, .. } => {
-                    Some(Window { from, to, covered: Vec::new(), checked: 0 })
+                BoundaryPiece::Window { from, to, .. } | BoundaryPiece::Frontier { from, to } => {
+                    let tol = cover::tolerance(obs.at, b);
+                    Some(Window { from, to, tol, covered: Vec::new(), checked: 0 })
                 }
                 _ => None,
             })
@@ -111,8 +114,9 @@ impl Known {
             w.covered = covered;
             w.checked = n;
         }
-        let covered = &self.views[view].windows[k].covered;
-        let gap = cover::first_gap(covered)?;
+        let w = &self.views[view].windows[k];
+        let covered = &w.covered;
+        let gap = cover::first_gap(covered, w.tol)?;
         let (dx, dy) = (to[0] - from[0], to[1] - from[1]);
         let open = (1.0 - covered.iter().map(|c| c[1] - c[0]).sum::<f64>()) * dx.hypot(dy);
         let tm = 0.5 * (gap[0] + gap[1]);

@@ -1,0 +1,520 @@
+//! Offline references for polygon exploration: what a robot that knew the map could do.
+//!
+//! The paper's offline problem (its conditions 1–3) is the art gallery problem with one more
+//! constraint: every viewpoint after the first is seen from an earlier one, and the first is
+//! the start. Here:
+//!
+//! - [`lower_bound`]: 1 view, or `⌈area / πR²⌉` with a range limit (the paper's bound for the
+//!   competitive ratio of the range-limited algorithm);
+//! - [`greedy`]: a valid viewpoint set, as an upper reference: from the start, repeatedly add
+//!   the candidate seen from a chosen one that sees the most area not yet covered;
+//! - [`optimum`]: the exact minimum over the same candidates by integer programming
+//!   (good_lp with the pure-Rust microlp), for small instances.
+//!
+//! **Candidates** are the start, every vertex of the domain (a guard on a vertex, seen in the
+//! closed free space; a robot stands a hair inside) and the centroid of every triangle of the
+//! free space's constrained Delaunay triangulation (so that, for instance, the kernel of a
+//! star is among them). Vertex guards alone always suffice: each triangle is seen whole from
+//! each of its corners. The exact minimum is exact *over these candidates*; a point guard
+//! elsewhere can occasionally do better, which the output says.
+//!
+//! **Witnesses**: coverage is required at the centroid of every triangle of the free space
+//! (weighted by its area), and the solution is then checked exactly with
+//! [`cover::open_windows`]. Where a window of the chosen regions is left open (its probe
+//! point lies in the free space), a witness is added there and the problem is solved again, until the certificate holds (the
+//! usual iterative scheme for art gallery problems). The ILP optimum over witnesses is a lower
+//! bound of the optimum over candidates; once its solution is certified complete, it is that
+//! optimum. Connectivity is added lazily the same way: when the chosen set falls apart in the
+//! visibility graph, each part away from the start gets a cut (one of its neighbours must be
+//! chosen), and the program is solved again.
+
+use std::collections::HashMap;
+
+use good_lp::{
+    Expression, Solution, SolverModel, Variable, WithTimeLimit, constraint, microlp, variable,
+    variables,
+};
+use serde::{Deserialize, Serialize};
+
+use crate::algorithm::cover;
+use crate::algorithm::visibility::{Visibility, VisibilityError, VisibilityRegion};
+use crate::geometry::{Domain, Location};
+use crate::kernel::{Point, RingSide, ring_side};
+
+/// A set of viewpoints found offline.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct ViewSet {
+    /// The viewpoints, the start first, each seen from an earlier one.
+    pub viewpoints: Vec<Point>,
+    /// Whether the exact coverage certificate holds (no window of the union left open).
+    pub certified: bool,
+}
+
+/// Why an offline reference could not be computed.
+#[derive(Debug, Clone, PartialEq, thiserror::Error)]
+#[non_exhaustive]
+pub enum OfflineError {
+    /// The domain could not be preprocessed, or the start is outside it.
+    #[error(transparent)]
+    Visibility(#[from] VisibilityError),
+    /// The integer program failed (time limit, or a solver error).
+    #[error("integer program: {0}")]
+    Solver(String),
+}
+
+/// The lower bound on the number of views of any exploration: 1, or `⌈area / (πR²)⌉` when a
+/// view sees at most a disc of radius `range`.
+pub fn lower_bound(domain: &Domain, range: Option<f64>) -> usize {
+    match range {
+        Some(r) if r > 0.0 && r.is_finite() => {
+            let discs = domain.area() / (std::f64::consts::PI * r * r);
+            (discs.ceil() as usize).max(1)
+        }
+        _ => 1,
+    }
+}
+
+/// The bound of the paper's Lemma 4 on the views of the range-limited algorithm:
+/// `⌊8·Area / (3R²)⌋ + ⌊Perimeter / R⌋ + r + h + 1`.
+///
+/// The extracted text prints the first term as "8 3 Area(P) / 3 3 R2": the "3"s between
+/// factors are the PDF's multiplication signs, and the proof fixes the term — grid squares
+/// with diagonal √3R/2 have side √3R/(2√2) and area 3R²/8, so at most 8·Area/(3R²) of them
+/// lie inside P.
+pub fn lemma4_bound(domain: &Domain, range: f64) -> usize {
+    let perimeter: f64 = domain
+        .rings()
+        .iter()
+        .map(|ring| {
+            (0..ring.len())
+                .map(|i| {
+                    let (a, b) = (ring[i], ring[(i + 1) % ring.len()]);
+                    (b[0] - a[0]).hypot(b[1] - a[1])
+                })
+                .sum::<f64>()
+        })
+        .sum();
+    let squares = (8.0 * domain.area() / (3.0 * range * range)).floor() as usize;
+    let boundary = (perimeter / range).floor() as usize;
+    squares + boundary + domain.reflex_vertices().len() + domain.holes().len() + 1
+}
+
+/// The upper bound the paper proves for its algorithm: r + 1 views (Theorem 1), or Lemma 4's
+/// bound with a range limit, with the rule's name.
+pub fn upper_bound(domain: &Domain, range: Option<f64>) -> (usize, &'static str) {
+    match range {
+        Some(r) => (lemma4_bound(domain, r), "Lemma 4: 8A/(3R^2) + P/R + r + h + 1"),
+        None => (domain.reflex_vertices().len() + 1, "Theorem 1: r + 1"),
+    }
+}
+
+/// Everything a run is measured against.
+#[derive(Debug, Clone, Default, PartialEq, Serialize, Deserialize)]
+pub struct References {
+    /// The lower bound on any exploration's views ([`lower_bound`]).
+    pub lower: usize,
+    /// The greedy upper reference, when computed.
+    pub greedy: Option<ViewSet>,
+    /// The exact minimum over the candidates, when computed.
+    pub optimum: Option<ViewSet>,
+}
+
+/// Limits on the offline work for one run.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+pub struct ReferenceLimits {
+    /// Compute the greedy reference up to this many domain vertices.
+    pub greedy_max_vertices: usize,
+    /// Compute the exact optimum up to this many domain vertices.
+    pub optimum_max_vertices: usize,
+}
+
+impl Default for ReferenceLimits {
+    fn default() -> Self {
+        Self { greedy_max_vertices: 1000, optimum_max_vertices: 40 }
+    }
+}
+
+impl ReferenceLimits {
+    /// Only the closed-form lower bound.
+    pub const NONE: Self = Self { greedy_max_vertices: 0, optimum_max_vertices: 0 };
+}
+
+/// The lower bound always, and the greedy and exact references within `limits`. With a range
+/// limit only the lower bound is computed: the candidates' regions above are unlimited.
+///
+/// # Errors
+/// [`OfflineError`] if the start is outside the free space or the solver fails.
+pub fn references(
+    vis: &Visibility,
+    start: Point,
+    range: Option<f64>,
+    limits: ReferenceLimits,
+) -> Result<References, OfflineError> {
+    let d = vis.domain();
+    let mut refs = References { lower: lower_bound(d, range), greedy: None, optimum: None };
+    if range.is_some() {
+        return Ok(refs);
+    }
+    let n = d.vertex_count();
+    if n <= limits.greedy_max_vertices {
+        refs.greedy = Some(greedy(vis, start)?);
+    }
+    if n <= limits.optimum_max_vertices {
+        refs.optimum = optimum(vis, start, limits.optimum_max_vertices)?;
+    }
+    Ok(refs)
+}
+
+/// The candidates, the witnesses and who sees what.
+struct Problem<'a> {
+    vis: &'a Visibility,
+    /// The start, the vertices, then triangle centroids.
+    cands: Vec<Point>,
+    /// Candidates that are points (the start and the centroids), with their indices.
+    points: Vec<usize>,
+    regions: Vec<VisibilityRegion>,
+    /// `sees[c]`: the candidates candidate `c` sees (itself excluded), sorted.
+    sees: Vec<Vec<usize>>,
+    /// Witness points with weights (areas).
+    witnesses: Vec<(Point, f64)>,
+    /// `seen_by[w]`: the candidates that see witness `w`.
+    seen_by: Vec<Vec<usize>>,
+    vertex_index: HashMap<[u64; 2], usize>,
+}
+
+impl<'a> Problem<'a> {
+    fn new(vis: &'a Visibility, start: Point) -> Result<Self, OfflineError> {
+        let d = vis.domain();
+        let m = vis.mesh();
+        let pts = m.points();
+        let tris: Vec<(Point, f64)> = m
+            .tri
+            .iter()
+            .map(|t| {
+                let [a, b, c] = t.map(|i| pts[i as usize]);
+                let centroid = [(a[0] + b[0] + c[0]) / 3.0, (a[1] + b[1] + c[1]) / 3.0];
+                let area =
+                    0.5 * ((b[0] - a[0]) * (c[1] - a[1]) - (c[0] - a[0]) * (b[1] - a[1])).abs();
+                (centroid, area)
+            })
+            .collect();
+        let mut cands = vec![start];
+        cands.extend(d.rings().iter().flatten().copied());
+        let mut vertex_index = HashMap::new();
+        for (i, p) in cands.iter().enumerate().skip(1) {
+            vertex_index.entry(key(*p)).or_insert(i);
+        }
+        let mut points = vec![0];
+        points.extend(cands.len()..cands.len() + tris.len());
+        cands.extend(tris.iter().map(|t| t.0));
+        let regions = cands.iter().map(|&c| vis.query(c)).collect::<Result<Vec<_>, _>>()?;
+        let mut p = Self {
+            vis,
+            cands,
+            points,
+            regions,
+            sees: Vec::new(),
+            witnesses: Vec::new(),
+            seen_by: Vec::new(),
+            vertex_index,
+        };
+        p.sees = (0..p.cands.len()).map(|c| p.seen_from_region(&p.regions[c], Some(c))).collect();
+        for (w, weight) in tris {
+            p.add_witness(w, weight)?;
+        }
+        Ok(p)
+    }
+
+    /// The candidates a region sees: the vertices on its boundary (every vertex seen lies on
+    /// it) and the point candidates inside it (closed).
+    fn seen_from_region(&self, r: &VisibilityRegion, own: Option<usize>) -> Vec<usize> {
+        let mut out: Vec<usize> = r
+            .boundary
+            .iter()
+            .flat_map(|b| {
+                let (a, c) = b.ends();
+                [a, c]
+            })
+            .filter_map(|q| self.vertex_index.get(&key(q)).copied())
+            .collect();
+        let [lo, hi] = cover::bounds_of(&r.polygon);
+        for &c in &self.points {
+            let q = self.cands[c];
+            if q[0] >= lo[0]
+                && q[0] <= hi[0]
+                && q[1] >= lo[1]
+                && q[1] <= hi[1]
+                && ring_side(&r.polygon, q) != RingSide::Outside
+            {
+                out.push(c);
+            }
+        }
+        out.sort_unstable();
+        out.dedup();
+        out.retain(|&c| Some(c) != own);
+        out
+    }
+
+    fn add_witness(&mut self, w: Point, weight: f64) -> Result<(), OfflineError> {
+        let r = self.vis.query(w)?;
+        let by = self.seen_from_region(&r, None);
+        self.witnesses.push((w, weight));
+        self.seen_by.push(by);
+        Ok(())
+    }
+
+    /// Checks a solution exactly; adds a witness beyond every open window part. Returns
+    /// whether the solution was complete.
+    fn certify(&mut self, chosen: &[usize]) -> Result<bool, OfflineError> {
+        let regions: Vec<VisibilityRegion> =
+            chosen.iter().map(|&c| self.regions[c].clone()).collect();
+        let d = self.vis.domain();
+        let mut added = 0;
+        for p in cover::open_window_points(&regions) {
+            if d.locate(p) == Location::Interior {
+                self.add_witness(p, 1e-9 * d.area())?;
+                added += 1;
+            }
+        }
+        Ok(added == 0)
+    }
+
+    fn view_set(&self, chosen: &[usize], certified: bool) -> ViewSet {
+        let (order, _) = self.reach(chosen);
+        ViewSet { viewpoints: order.into_iter().map(|c| self.cands[c]).collect(), certified }
+    }
+
+    /// The chosen candidates reachable from the start through chosen ones, breadth first (so
+    /// each is seen by an earlier one), and the chosen ones that are not.
+    fn reach(&self, chosen: &[usize]) -> (Vec<usize>, Vec<usize>) {
+        let mut inset = vec![false; self.cands.len()];
+        for &c in chosen {
+            inset[c] = true;
+        }
+        let mut out = vec![0];
+        let mut done = vec![false; self.cands.len()];
+        done[0] = true;
+        let mut k = 0;
+        while k < out.len() {
+            for &n in &self.sees[out[k]] {
+                if inset[n] && !done[n] {
+                    done[n] = true;
+                    out.push(n);
+                }
+            }
+            k += 1;
+        }
+        let rest = chosen.iter().copied().filter(|&c| !done[c]).collect();
+        (out, rest)
+    }
+}
+
+fn key(p: Point) -> [u64; 2] {
+    [p[0].to_bits(), p[1].to_bits()]
+}
+
+/// The greedy upper reference: a certified viewpoint set, each seen from an earlier one.
+///
+/// # Errors
+/// [`OfflineError::Visibility`] if the start is outside the free space.
+///
+/// # Complexity
+/// O(n) visibility queries for the candidates and witnesses, then O(k · n · w) for k views.
+pub fn greedy(vis: &Visibility, start: Point) -> Result<ViewSet, OfflineError> {
+    let mut p = Problem::new(vis, start)?;
+    let nc = p.cands.len();
+    let mut chosen = vec![0];
+    let mut is_chosen = vec![false; nc];
+    is_chosen[0] = true;
+    let mut eligible = vec![false; nc];
+    for &n in &p.sees[0] {
+        eligible[n] = true;
+    }
+    // Witnesses each candidate sees, and which witnesses are covered; both grow as witnesses
+    // are added by the certificate.
+    let mut sees_w: Vec<Vec<usize>> = vec![Vec::new(); nc];
+    let mut covered: Vec<bool> = Vec::new();
+    let mut known = 0;
+    for _round in 0..64 {
+        for w in known..p.witnesses.len() {
+            covered.push(p.seen_by[w].iter().any(|&c| is_chosen[c]));
+            for &c in &p.seen_by[w] {
+                sees_w[c].push(w);
+            }
+        }
+        known = p.witnesses.len();
+        let mut gain: Vec<f64> = (0..nc)
+            .map(|c| sees_w[c].iter().filter(|&&w| !covered[w]).map(|&w| p.witnesses[w].1).sum())
+            .collect();
+        let mut count: Vec<usize> =
+            (0..nc).map(|c| sees_w[c].iter().filter(|&&w| !covered[w]).count()).collect();
+        loop {
+            let best = (0..nc)
+                .filter(|&c| eligible[c] && !is_chosen[c] && count[c] > 0)
+                .max_by(|&a, &b| gain[a].total_cmp(&gain[b]).then(b.cmp(&a)));
+            let Some(c) = best else { break };
+            chosen.push(c);
+            is_chosen[c] = true;
+            for &n in &p.sees[c] {
+                eligible[n] = true;
+            }
+            for &w in &sees_w[c] {
+                if !covered[w] {
+                    covered[w] = true;
+                    for &o in &p.seen_by[w] {
+                        gain[o] -= p.witnesses[w].1;
+                        count[o] -= 1;
+                    }
+                }
+            }
+        }
+        if p.certify(&chosen)? {
+            return Ok(p.view_set(&chosen, true));
+        }
+    }
+    Ok(p.view_set(&chosen, false))
+}
+
+/// The exact minimum number of views over the candidates (start and vertices), with the
+/// connectivity constraint, by integer programming; `None` when the domain has more than
+/// `max_vertices` vertices.
+///
+/// The model: a binary `x_c` per candidate, `x_start = 1`; every witness seen by a chosen
+/// candidate; and a single-commodity flow from the start along visibility arcs, each chosen
+/// candidate absorbing one unit, arcs open only between chosen candidates — so the chosen set
+/// is connected to the start in the visibility graph, which is the paper's condition 2.
+///
+/// # Errors
+/// [`OfflineError`] if the start is outside the free space or the solver fails.
+pub fn optimum(
+    vis: &Visibility,
+    start: Point,
+    max_vertices: usize,
+) -> Result<Option<ViewSet>, OfflineError> {
+    if vis.domain().vertex_count() > max_vertices {
+        return Ok(None);
+    }
+    let mut p = Problem::new(vis, start)?;
+    let mut cuts: Vec<Vec<usize>> = Vec::new();
+    let mut last = Vec::new();
+    for _round in 0..200 {
+        let chosen = solve_ilp(&p, &cuts)?;
+        let (_, rest) = p.reach(&chosen);
+        if !rest.is_empty() {
+            cuts.extend(components(&p, &rest));
+            continue;
+        }
+        if p.certify(&chosen)? {
+            return Ok(Some(p.view_set(&chosen, true)));
+        }
+        last = chosen;
+    }
+    Ok(Some(p.view_set(&last, false)))
+}
+
+/// The connected parts of `rest` in the visibility graph, each as the cut "some neighbour of
+/// the part outside it is chosen" (listed as those neighbours, then a member of the part).
+fn components(p: &Problem, rest: &[usize]) -> Vec<Vec<usize>> {
+    let mut inrest = vec![false; p.cands.len()];
+    for &c in rest {
+        inrest[c] = true;
+    }
+    let mut seen = vec![false; p.cands.len()];
+    let mut cuts = Vec::new();
+    for &r in rest {
+        if seen[r] {
+            continue;
+        }
+        let mut part = vec![r];
+        seen[r] = true;
+        let mut k = 0;
+        while k < part.len() {
+            for &n in &p.sees[part[k]] {
+                if inrest[n] && !seen[n] {
+                    seen[n] = true;
+                    part.push(n);
+                }
+            }
+            k += 1;
+        }
+        let mut inpart = vec![false; p.cands.len()];
+        for &c in &part {
+            inpart[c] = true;
+        }
+        let mut nb: Vec<usize> =
+            part.iter().flat_map(|&c| p.sees[c].iter().copied()).filter(|&n| !inpart[n]).collect();
+        nb.sort_unstable();
+        nb.dedup();
+        for &v in &part {
+            let mut cut = nb.clone();
+            cut.push(v);
+            cuts.push(cut);
+        }
+    }
+    cuts
+}
+
+fn solve_ilp(p: &Problem, cuts: &[Vec<usize>]) -> Result<Vec<usize>, OfflineError> {
+    let n = p.cands.len();
+    let mut vars = variables!();
+    let x: Vec<Variable> = (0..n).map(|_| vars.add(variable().binary())).collect();
+    let objective: Expression = x.iter().copied().sum();
+    let mut model = vars.minimise(objective).using(microlp).with_time_limit(60.0);
+    model = model.with(constraint!(x[0] == 1.0));
+    for by in &p.seen_by {
+        let e: Expression = by.iter().map(|&c| x[c]).sum();
+        model = model.with(constraint!(e >= 1.0));
+    }
+    for cut in cuts {
+        let (v, nb) = cut.split_last().unwrap_or((&0, &[]));
+        let e: Expression = nb.iter().map(|&c| x[c]).sum();
+        model = model.with(constraint!(e >= x[*v]));
+    }
+    let sol = model.solve().map_err(|e| OfflineError::Solver(e.to_string()))?;
+    Ok((0..n).filter(|&c| sol.value(x[c]) > 0.5).collect())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::generate::{spiral, star};
+
+    #[test]
+    fn a_convex_room_needs_one_view() {
+        let d = Domain::new(vec![[0.0, 0.0], [4.0, 0.0], [4.0, 3.0], [0.0, 3.0]], vec![]).unwrap();
+        let v = Visibility::new(d).unwrap();
+        let g = greedy(&v, [1.0, 1.0]).unwrap();
+        assert_eq!(g.viewpoints.len(), 1);
+        assert!(g.certified);
+        let o = optimum(&v, [1.0, 1.0], 50).unwrap().unwrap();
+        assert_eq!(o.viewpoints.len(), 1);
+    }
+
+    #[test]
+    fn the_star_needs_two_and_the_spiral_r_plus_one() {
+        // The paper's Fig. 11: the start and the star point.
+        let s = star(5).unwrap();
+        let v = Visibility::new(s.domain.clone()).unwrap();
+        let o = optimum(&v, s.start, 60).unwrap().unwrap();
+        assert!(o.certified);
+        assert_eq!(o.viewpoints.len(), 2);
+        // The paper's Fig. 9: no algorithm does better than r + 1 on the spiral.
+        for turns in 1..4 {
+            let sp = spiral(turns).unwrap();
+            let v = Visibility::new(sp.domain.clone()).unwrap();
+            let o = optimum(&v, sp.start, 60).unwrap().unwrap();
+            assert!(o.certified);
+            assert_eq!(o.viewpoints.len(), turns + 1, "spiral {turns}");
+            let g = greedy(&v, sp.start).unwrap();
+            assert!(g.certified && g.viewpoints.len() >= o.viewpoints.len());
+        }
+    }
+
+    #[test]
+    fn the_range_lower_bound_counts_discs() {
+        let d =
+            Domain::new(vec![[0.0, 0.0], [10.0, 0.0], [10.0, 10.0], [0.0, 10.0]], vec![]).unwrap();
+        assert_eq!(lower_bound(&d, None), 1);
+        assert_eq!(lower_bound(&d, Some(1.0)), 32); // 100 / π = 31.8
+    }
+}
