@@ -376,12 +376,15 @@ pub(crate) struct VisibilityArgs {
 #[derive(Debug, Args)]
 pub(crate) struct ReproduceArgs {
     /// corner-table-2, corner-table-3, corner-table-4, corner-fig-4, corner-fig-6,
-    /// corner-fig-7, corner-fig-8, circle-table-1, circle-fig-7, views-spiral, views-star, or
-    /// all.
+    /// corner-fig-7, corner-fig-8, circle-table-1, circle-fig-7, views-spiral, views-star,
+    /// views-benchmarks, or all.
     pub(crate) id: String,
     /// Monte Carlo samples where the paper used sampling.
     #[arg(long, default_value_t = 1000)]
     pub(crate) samples: usize,
+    /// The folder of benchmark environments (*.pol, ROS *.yaml) for views-benchmarks.
+    #[arg(long, default_value = stopscan::experiment::DEFAULT_DATA)]
+    pub(crate) data: PathBuf,
 }
 
 #[derive(Debug, Clone, Copy, PartialEq, Eq, ValueEnum)]

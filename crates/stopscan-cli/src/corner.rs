@@ -397,7 +397,15 @@ pub(crate) fn reproduce(a: &cli::ReproduceArgs, g: &Global) -> anyhow::Result<()
         if a.id == "all" { stopscan::experiment::ids() } else { vec![a.id.as_str()] };
     let mut outs = Vec::new();
     for id in ids {
-        let r = stopscan::experiment::reproduce(id, a.samples, g.seed)?;
+        let r = match stopscan::experiment::reproduce_with_data(id, a.samples, g.seed, &a.data) {
+            Ok(r) => r,
+            // `all` without the benchmark data still reproduces everything else.
+            Err(e) if a.id == "all" && id == "views-benchmarks" => {
+                eprintln!("views-benchmarks skipped: {e}");
+                continue;
+            }
+            Err(e) => return Err(e.into()),
+        };
         let mut files = Vec::new();
         if let Some(dir) = picture_dir(g)? {
             for (name, chart) in &r.charts {

@@ -176,3 +176,123 @@ fn baselines_cover_everything_with_legal_moves() {
         assert_eq!(open_windows(&regions, |p| d.locate(p) == Location::Interior), 0, "{name}");
     }
 }
+
+/// Runs `name` with a sensor of range `range` and checks the range-limited figures: coverage
+/// ≥ 1 − 1e-6, no frontier left open, every move legal, and the paper's Lemma 4 bound.
+fn check_range(inst: &Instance, name: &str, range: f64) -> PolygonRun {
+    use stopscan::offline::polygon::lemma4_bound;
+    let world = PolygonWorld::with_range(inst.domain.clone(), Some(range)).unwrap();
+    let mut s = by_name(name, &CostModel::default()).unwrap();
+    let run = run(&world, inst.start, &CostModel::default(), s.as_mut(), &mut NoObserver).unwrap();
+    let d = world.domain();
+    let polys: Vec<_> = run.scans.iter().map(|s| s.region.polygon.clone()).collect();
+    let covered = Region::union_all(&polys).area();
+    assert!(
+        covered >= (1.0 - 1e-6) * d.area(),
+        "{name} R={range}: covered {covered} of {}",
+        d.area()
+    );
+    let regions: Vec<_> = run.scans.iter().map(|s| s.region.clone()).collect();
+    assert_eq!(
+        open_windows(&regions, |p| d.locate(p) == Location::Interior),
+        0,
+        "{name} R={range}"
+    );
+    for w in run.path.windows(2) {
+        assert!(world.can_move(w[0], w[1]), "{name} R={range}: {w:?}");
+    }
+    let bound = lemma4_bound(d, range) as u64;
+    assert!(
+        run.tally.scans <= bound,
+        "{name} R={range}: {} scans > Lemma 4's {bound}",
+        run.tally.scans
+    );
+    // Every scan sees at most a disc: the scans are at least area / πR².
+    let lower = stopscan::offline::polygon::lower_bound(d, Some(range)) as u64;
+    assert!(run.tally.scans >= lower, "{name} R={range}: {} scans < {lower}", run.tally.scans);
+    run
+}
+
+#[test]
+fn range_limited_exploration_covers_within_lemma_4() {
+    let cases = vec![
+        spiral(3).unwrap(),
+        comb(3).unwrap(),
+        office(3, 4, 7).unwrap(),
+        pillar_forest(30.0, 20.0, 6, 3).unwrap(),
+    ];
+    for inst in &cases {
+        for name in ["range_limited", "depth_first", "nearest_frontier"] {
+            for range in [2.5, 6.0] {
+                check_range(inst, name, range);
+            }
+        }
+    }
+}
+
+/// In an empty room much larger than the range, the range-limited algorithm crosses open
+/// space on arcs (Steps 2 and 6) and follows the walls (Step 4).
+#[test]
+fn range_limited_follows_the_walls_of_a_large_room() {
+    let outer = vec![[0.0, 0.0], [20.0, 0.0], [20.0, 12.0], [0.0, 12.0]];
+    let domain = stopscan::geometry::Domain::new(outer, vec![]).unwrap();
+    let run = check_range(&Instance { domain, start: [10.0, 6.0] }, "range_limited", 3.0);
+    // Some viewpoints stand at the walls (a hair inside), as the paper's boundary walk does.
+    let at_wall = run
+        .scans
+        .iter()
+        .filter(|s| {
+            let [x, y] = s.at;
+            x.min(20.0 - x).min(y).min(12.0 - y) < 1e-3
+        })
+        .count();
+    assert!(at_wall >= 4, "{at_wall} scans at a wall");
+}
+
+proptest::proptest! {
+    #![proptest_config(proptest::prelude::ProptestConfig::with_cases(24))]
+
+    #[test]
+    fn range_limited_holds_on_random_instances(kind in 0usize..3, seed in 0u64..500, range in 1.5..8.0f64) {
+        let inst = match kind {
+            0 => office(1 + (seed % 4) as usize, (seed % 6) as usize, seed).unwrap(),
+            1 => pillar_forest(30.0, 20.0, 1 + (seed % 8) as usize, seed).unwrap(),
+            _ => comb(1 + (seed % 4) as usize).unwrap(),
+        };
+        check_range(&inst, "range_limited", range);
+    }
+}
+
+/// `reproduce views-benchmarks` on the small shared benchmark polygons (skipped without
+/// `../shared`): every run within the bound, complete, and the offline optimum computed.
+#[test]
+fn views_benchmarks_on_the_small_shared_polygons() {
+    let root = std::path::PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("../../../shared/data");
+    if !root.exists() {
+        eprintln!("skipped: ../shared is absent");
+        return;
+    }
+    let dir = std::env::temp_dir().join(format!("stopscan-vb-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    for f in [
+        "agp-polygons/agp2009a-orthorand/random-20-1.pol",
+        "agp-polygons/agp2009a-simplerand/randsimple-20-1.pol",
+        "agp-polygons/agp2009a-rvk/randvon-20-1.pol",
+    ] {
+        let src = root.join(f);
+        if src.exists() {
+            std::fs::copy(&src, dir.join(src.file_name().unwrap())).unwrap();
+        }
+    }
+    let r = stopscan::experiment::reproduce_with_data("views-benchmarks", 0, 0, &dir).unwrap();
+    std::fs::remove_dir_all(&dir).unwrap();
+    let n = stopscan::strategy::polygon::REGISTRY.len();
+    let scans: Vec<_> = r.rows.iter().filter(|row| row.paper.is_some()).collect();
+    assert_eq!(scans.len(), 3 * n, "{:?}", r.rows);
+    for row in &scans {
+        assert!(row.ours <= row.paper.unwrap(), "{}: {} > {:?}", row.label, row.ours, row.paper);
+    }
+    assert_eq!(r.rows.iter().filter(|row| row.label.contains("offline optimum")).count(), 3);
+    assert!(r.notes[0].starts_with(&format!("{} of {} runs", 3 * n, 3 * n)), "{}", r.notes[0]);
+    assert!(r.notes[1].starts_with(&format!("{} of {} runs", 3 * n, 3 * n)), "{}", r.notes[1]);
+}

@@ -13,8 +13,26 @@ pub fn ids() -> Vec<&'static str> {
 /// # Errors
 /// [`ExperimentError::UnknownId`] for an unknown identifier; model errors otherwise.
 pub fn reproduce(id: &str, samples: usize, seed: u64) -> Result<Reproduction, ExperimentError> {
+    reproduce_with_data(id, samples, seed, std::path::Path::new(DEFAULT_DATA))
+}
+
+/// Where `views-benchmarks` looks for its inputs unless told otherwise: the shared benchmark
+/// data beside a clone.
+pub const DEFAULT_DATA: &str = "../shared/data";
+
+/// [`reproduce`], with the folder of benchmark environments for `views-benchmarks`.
+///
+/// # Errors
+/// [`ExperimentError::UnknownId`] for an unknown identifier; model errors otherwise (no
+/// benchmark files below `data`, for one).
+pub fn reproduce_with_data(
+    id: &str,
+    samples: usize,
+    seed: u64,
+    data: &std::path::Path,
+) -> Result<Reproduction, ExperimentError> {
     if polygon::IDS.contains(&id) {
-        return polygon::reproduce(id);
+        return polygon::reproduce(id, data);
     }
     corner::reproduce(id, samples, seed).map_err(|e| match e {
         ExperimentError::UnknownId(i, _) => ExperimentError::UnknownId(i, ids().join(", ")),

@@ -6,7 +6,7 @@ use serde::{Deserialize, Serialize};
 
 use crate::algorithm::cover::{self, Intervals};
 use crate::algorithm::visibility::BoundaryPiece;
-use crate::kernel::{Point, RingSide, ring_side};
+use crate::kernel::{Point, RingSide, ring_side, segments_intersect};
 use crate::protocol::Action;
 use crate::protocol::polygon::PolygonObservation;
 
@@ -15,6 +15,8 @@ pub(super) struct View {
     pub(super) at: Point,
     polygon: Vec<Point>,
     bounds: [Point; 2],
+    /// The region's boundary pieces, counter-clockwise.
+    pub(super) pieces: Vec<BoundaryPiece>,
     windows: Vec<Window>,
     pub(super) parent: Option<usize>,
 }
@@ -24,12 +26,19 @@ pub(super) struct View {
 /// or by a scan taken for it. Covered parts only grow, so the test resumes where it stopped.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 struct Window {
+    /// Its index among the view's pieces.
+    piece: usize,
     from: Point,
     to: Point,
     /// Uncovered parts shorter than this (in parameter) are ignored ([`cover::tolerance`]).
     tol: f64,
     covered: Intervals,
     checked: usize,
+    /// A scan was taken at a junction of this window: from now on only its gap middles are
+    /// targeted (and marked handled), so each window costs at most one junction scan and
+    /// the exploration ends.
+    #[serde(default)]
+    no_junction: bool,
 }
 
 /// A next viewpoint and the part of a window it is for.
@@ -39,6 +48,11 @@ pub(super) struct Target {
     view: usize,
     window: usize,
     gap: [f64; 2],
+    /// Placed at a point of the window other than the gap's middle (a wall junction), from
+    /// where the scan may see only part of the gap: it is not marked handled, but the window
+    /// gets only gap-middle targets from then on.
+    #[serde(default)]
+    off_gap: bool,
 }
 
 /// The views taken so far.
@@ -52,6 +66,16 @@ pub(super) struct Known {
 }
 
 impl View {
+    /// Whether the straight move from the viewpoint to `z` stays strictly inside the region
+    /// (exact tests against its boundary, whose reflex vertices are exact input points).
+    fn reaches(&self, z: Point) -> bool {
+        let n = self.polygon.len();
+        ring_side(&self.polygon, z) == RingSide::Inside
+            && (0..n).all(|i| {
+                !segments_intersect(self.at, z, self.polygon[i], self.polygon[(i + 1) % n])
+            })
+    }
+
     /// How many windows the view's region has.
     pub(super) fn windows_len(&self) -> usize {
         self.windows.len()
@@ -62,24 +86,44 @@ impl Known {
     /// Records a scan taken from inside the region of view `parent`; the target it was taken
     /// for counts as handled.
     pub(super) fn add(&mut self, obs: &PolygonObservation, parent: Option<usize>) -> usize {
-        if let Some(t) = self.pending.take() {
+        let pending = self.pending.take();
+        if let Some(t) = pending.filter(|t| !t.off_gap) {
             self.handled(t);
         }
         let windows = obs
             .region
             .boundary
             .iter()
-            .filter_map(|b| match *b {
+            .enumerate()
+            .filter_map(|(piece, b)| match *b {
                 BoundaryPiece::Window { from, to, .. } | BoundaryPiece::Frontier { from, to } => {
                     let tol = cover::tolerance(obs.at, b);
-                    Some(Window { from, to, tol, covered: Vec::new(), checked: 0 })
+                    Some(Window {
+                        piece,
+                        from,
+                        to,
+                        tol,
+                        covered: Vec::new(),
+                        checked: 0,
+                        no_junction: false,
+                    })
                 }
                 _ => None,
             })
             .collect();
         let poly = &obs.region.polygon;
         let bounds = cover::bounds_of(poly);
-        self.views.push(View { at: obs.at, polygon: poly.clone(), bounds, windows, parent });
+        self.views.push(View {
+            at: obs.at,
+            polygon: poly.clone(),
+            bounds,
+            pieces: obs.region.boundary.clone(),
+            windows,
+            parent,
+        });
+        if let Some(t) = pending.filter(|t| t.off_gap) {
+            self.views[t.view].windows[t.window].no_junction = true;
+        }
         self.views.len() - 1
     }
 
@@ -128,9 +172,41 @@ impl Known {
         let at = [1e-6, 1e-8, 1e-10]
             .into_iter()
             .map(|e| [x[0] - e * dy, x[1] + e * dx])
-            .find(|&z| ring_side(&v.polygon, z) == RingSide::Inside)
+            .find(|&z| v.reaches(z))
             .unwrap_or(v.at);
-        Some((Target { at, view, window: k, gap }, open))
+        Some((Target { at, view, window: k, gap, off_gap: false }, open))
+    }
+
+    /// The index among `view`'s windows of the window that is its piece `piece`, if it is one
+    /// and junction targets are still tried on it.
+    pub(super) fn window_of_piece(&self, view: usize, piece: usize) -> Option<usize> {
+        self.views[view].windows.iter().position(|w| w.piece == piece && !w.no_junction)
+    }
+
+    /// A target for window `k` of `view` placed at `point` of the view's closed region (a
+    /// junction of a wall and the window, say), moved a hair toward the view's viewpoint and
+    /// along the unit vector `inward` (off the wall) so that it lies inside; `None` if the
+    /// window is explored.
+    pub(super) fn target_near(
+        &mut self,
+        view: usize,
+        k: usize,
+        point: Point,
+        inward: [f64; 2],
+    ) -> Option<Target> {
+        let (t, _) = self.window_target(view, k)?;
+        let v = &self.views[view];
+        // A junction at a window's far end lies on the window's ray, and a move along that
+        // ray would graze its reflex vertex; a junction on a wall reached along the wall
+        // would round onto either side of it. So the step goes off the wall as well.
+        let (dx, dy) = (v.at[0] - point[0], v.at[1] - point[1]);
+        let d = dx.hypot(dy);
+        let at = [1e-6, 1e-4, 1e-2]
+            .into_iter()
+            .map(|l| [point[0] + l * (dx + d * inward[0]), point[1] + l * (dy + d * inward[1])])
+            .find(|&z| v.reaches(z))
+            .unwrap_or(t.at);
+        Some(Target { at, off_gap: true, ..t })
     }
 
     /// Marks a target's window part as handled once a scan was taken for it, seen or not: a

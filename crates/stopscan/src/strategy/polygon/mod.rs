@@ -6,10 +6,12 @@ mod depth_first;
 mod greedy_nbv;
 mod known;
 mod nearest_frontier;
+mod range_limited;
 
 pub use depth_first::DepthFirst;
 pub use greedy_nbv::GreedyNbv;
 pub use nearest_frontier::NearestFrontier;
+pub use range_limited::RangeLimited;
 
 use serde::{Deserialize, Serialize};
 
@@ -34,6 +36,7 @@ pub const REGISTRY: &[(&str, &str)] = &[
     ("depth_first", "the paper's algorithm: depth-first over windows, at most r + 1 scans"),
     ("nearest_frontier", "frontier-based (Yamauchi): the nearest unexplored window by travel"),
     ("greedy_nbv", "greedy next-best-view: most predicted new area per second of cost"),
+    ("range_limited", "the paper's range-limited algorithm: open space, then boundary following"),
 ];
 
 /// A fresh strategy by registry name; `cost` is the cost model of the run (strategies that
@@ -43,6 +46,7 @@ pub fn by_name(name: &str, cost: &CostModel) -> Option<Box<dyn PolygonStrategy +
         "depth_first" => Some(Box::new(DepthFirst::new())),
         "nearest_frontier" => Some(Box::new(NearestFrontier::new())),
         "greedy_nbv" => Some(Box::new(GreedyNbv::new(*cost))),
+        "range_limited" => Some(Box::new(RangeLimited::new())),
         _ => None,
     }
 }
