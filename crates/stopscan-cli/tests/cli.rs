@@ -110,6 +110,30 @@ fn explore_and_generate() {
     // The offline optimum (integer programming) is r + 1 too: the algorithm is optimal here.
     assert_eq!(v["bounds"]["optimum"], 6, "{}", v["bounds"]);
     assert_eq!(v["bounds"]["competitive_ratio"], 1.0);
+    // With a range limit: the paper's range-limited algorithm, Lemma 4's bound, area / πR².
+    let vr = json(&[
+        "explore",
+        "--env",
+        env.to_str().unwrap(),
+        "--range",
+        "1.5",
+        "--strategy",
+        "range_limited",
+        "--out",
+        dir.join("range.json").to_str().unwrap(),
+    ]);
+    assert_eq!(vr["sensor"]["range"], 1.5);
+    assert!(vr["bounds"]["scans_upper_rule"].as_str().unwrap().contains("Lemma 4"));
+    assert!(
+        vr["metrics"]["scans"].as_u64().unwrap() <= vr["bounds"]["scans_upper"].as_u64().unwrap()
+    );
+    assert!(
+        vr["metrics"]["scans"].as_u64().unwrap() >= vr["bounds"]["scans_lower"].as_u64().unwrap()
+    );
+    assert_eq!(vr["metrics"]["open_windows"], 0);
+    assert!(f(&vr["metrics"], "coverage") >= 1.0 - 1e-6);
+    let bad = stopscan(&["explore", "--env", env.to_str().unwrap(), "--range", "0"]);
+    assert!(String::from_utf8_lossy(&bad.stderr).contains("--range must be a positive"));
     assert!((f(&v["metrics"], "scan_time_total") - 12.0).abs() < 1e-12);
     assert!(dir.join("s.svg").exists() && out.exists());
     // A folder: a sweep with every strategy, as CSV.
@@ -301,8 +325,19 @@ fn reproduce_every_id() {
     for id in "corner-table-2 corner-table-3 corner-table-4 corner-fig-7 corner-fig-8 circle-table-1 circle-fig-7".split(' ') {
         assert!(ids.contains(&id), "{id}");
     }
+    // views-benchmarks reads a folder of benchmark polygons: two small ones of our own.
+    let data = temp("repro-data");
+    std::fs::create_dir_all(data.join("set")).unwrap();
+    std::fs::write(data.join("set/l.pol"), "6 0/1 0/1 4/1 0/1 4/1 1/1 1/1 1/1 1/1 3/1 0/1 3/1\n")
+        .unwrap();
+    std::fs::write(
+        data.join("set/u.pol"),
+        "8 0/1 0/1 5/1 0/1 5/1 3/1 4/1 3/1 4/1 1/1 1/1 1/1 1/1 3/1 0/1 3/1\n",
+    )
+    .unwrap();
+    let data_arg = data.to_str().unwrap();
     for &id in &ids {
-        let v = json(&["reproduce", id, "--out", dir.to_str().unwrap()]);
+        let v = json(&["reproduce", id, "--out", dir.to_str().unwrap(), "--data", data_arg]);
         assert_eq!(v["id"], id);
         assert!(!v["model"].as_array().unwrap().is_empty());
         let rows = v["rows"].as_array().unwrap();
@@ -313,8 +348,17 @@ fn reproduce_every_id() {
         }
         assert!(dir.join(format!("{id}.json")).exists());
     }
-    let all = json(&["reproduce", "all", "--samples", "50"]);
+    let all = json(&["reproduce", "all", "--samples", "50", "--data", data_arg]);
     assert_eq!(all.as_array().unwrap().len(), ids.len());
+    // Without the data, `all` reproduces everything else and says what it skipped.
+    let missing = temp("no-data");
+    let out =
+        stopscan(&["reproduce", "all", "--samples", "50", "--data", missing.to_str().unwrap()]);
+    assert!(out.status.success());
+    assert!(String::from_utf8_lossy(&out.stderr).contains("views-benchmarks skipped"));
+    let out = stopscan(&["reproduce", "views-benchmarks", "--data", missing.to_str().unwrap()]);
+    assert_eq!(out.status.code(), Some(2));
+    assert!(String::from_utf8_lossy(&out.stderr).contains("no benchmark environments"));
     let t1 = json(&["reproduce", "circle-table-1"]);
     for r in t1["rows"].as_array().unwrap() {
         assert!(f(r, "rel_diff").abs() < 1e-6, "{r}");
