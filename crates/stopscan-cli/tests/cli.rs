@@ -149,6 +149,7 @@ fn explore_and_generate() {
     assert!(g2.status.success());
     std::fs::remove_file(dir.join("s.svg")).unwrap();
     std::fs::remove_file(&out).unwrap();
+    std::fs::remove_file(dir.join("range.json")).unwrap();
     let sweep = stopscan(&[
         "explore",
         "--env",
