@@ -300,6 +300,9 @@ pub(crate) struct ExploreArgs {
     /// Compute the exact offline optimum (integer programming) up to this many vertices.
     #[arg(long, default_value_t = 40)]
     pub(crate) optimum_max_vertices: usize,
+    /// Write every move and scan as it happens, one JSON object per line (flushed per event).
+    #[arg(long)]
+    pub(crate) trace: Option<PathBuf>,
 }
 
 #[derive(Debug, Clone, Copy, PartialEq, Eq, ValueEnum)]

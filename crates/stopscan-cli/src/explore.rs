@@ -10,7 +10,6 @@ use stopscan::io::run_record::RunRecord;
 use stopscan::kernel::Point;
 use stopscan::offline::polygon::ReferenceLimits;
 use stopscan::protocol::CostModel;
-use stopscan::sim::NoObserver;
 use stopscan::world::polygon::PolygonWorld;
 
 use crate::cli::{ExploreArgs, Family, Format, GenerateArgs, Global};
@@ -35,6 +34,42 @@ struct Job<'a> {
     range: Option<f64>,
     limits: ReferenceLimits,
     seed: u64,
+    /// Where to write the event trace (JSON lines), if anywhere.
+    trace: Option<&'a Path>,
+}
+
+/// A spinner that counts scans and metres as the run goes (hidden when not a terminal).
+struct Progress {
+    bar: indicatif::ProgressBar,
+    scans: u64,
+    metres: f64,
+}
+
+impl Progress {
+    fn new() -> Self {
+        let bar = indicatif::ProgressBar::new_spinner();
+        bar.set_style(
+            indicatif::ProgressStyle::with_template("{spinner} {msg} {elapsed}")
+                .unwrap_or_else(|_| indicatif::ProgressStyle::default_spinner()),
+        );
+        Self { bar, scans: 0, metres: 0.0 }
+    }
+}
+
+impl<O> stopscan::sim::Observer<Point, O> for Progress {
+    fn on_move(&mut self, _to: &Point, metres: f64) -> std::ops::ControlFlow<()> {
+        self.metres += metres;
+        std::ops::ControlFlow::Continue(())
+    }
+    fn on_scan(&mut self, _at: &Point, _o: &O) -> std::ops::ControlFlow<()> {
+        self.scans += 1;
+        self.bar.set_message(format!("{} scans, {:.1} m", self.scans, self.metres));
+        self.bar.tick();
+        std::ops::ControlFlow::Continue(())
+    }
+    fn on_finish(&mut self, _tally: &stopscan::protocol::Tally) {
+        self.bar.finish_and_clear();
+    }
 }
 
 fn explore(j: &Job) -> anyhow::Result<Outcome> {
@@ -51,8 +86,27 @@ fn explore(j: &Job) -> anyhow::Result<Outcome> {
     if world.scan(j.start).is_err() {
         bail!("the start ({}, {}) is outside the free space", j.start[0], j.start[1]);
     }
-    let run =
-        stopscan::sim::polygon::run(&world, j.start, &j.cost, strat.as_mut(), &mut NoObserver)?;
+    let mut progress = Progress::new();
+    let run = match j.trace {
+        None => {
+            stopscan::sim::polygon::run(&world, j.start, &j.cost, strat.as_mut(), &mut progress)?
+        }
+        Some(path) => {
+            let file = std::fs::File::create(path)
+                .with_context(|| format!("cannot write {}", path.display()))?;
+            let mut trace = stopscan::sim::JsonLinesTrace::new(std::io::BufWriter::new(file));
+            let run = {
+                let mut all = stopscan::sim::Fanout(vec![&mut trace, &mut progress]);
+                stopscan::sim::polygon::run(&world, j.start, &j.cost, strat.as_mut(), &mut all)?
+            };
+            if let Some(e) = trace.error {
+                return Err(
+                    anyhow::Error::from(e).context(format!("cannot write {}", path.display()))
+                );
+            }
+            run
+        }
+    };
     let vis = stopscan::algorithm::visibility::Visibility::new(j.domain.clone())?;
     let refs = stopscan::offline::polygon::references(&vis, j.start, j.range, j.limits)?;
     let regions: Vec<_> = run.scans.iter().map(|s| s.region.clone()).collect();
@@ -142,6 +196,7 @@ pub(crate) fn main_job(g: &Global) -> anyhow::Result<()> {
         range: None,
         limits: ReferenceLimits::default(),
         seed: g.seed,
+        trace: None,
     })?;
     let dir = g.out.clone().unwrap_or_else(|| PathBuf::from("stopscan-out"));
     std::fs::create_dir_all(&dir).with_context(|| format!("cannot create {}", dir.display()))?;
@@ -260,6 +315,7 @@ pub(crate) fn run(a: &ExploreArgs, g: &Global) -> anyhow::Result<()> {
             optimum_max_vertices: a.optimum_max_vertices,
         },
         seed: g.seed,
+        trace: a.trace.as_deref(),
     })?;
     let out = g.out.clone().unwrap_or_else(|| PathBuf::from("run.json"));
     finish(g, &o, &out, a.svg.as_deref())

@@ -85,6 +85,71 @@ fn main_job_explores_the_office_and_writes_the_run_record() {
 }
 
 #[test]
+fn explore_trace_range_and_determinism() {
+    let dir = temp("trace");
+    std::fs::create_dir_all(&dir).unwrap();
+    let env = dir.join("spiral.geojson");
+    let g = stopscan(&["generate", "spiral", "--size", "5", "-o", env.to_str().unwrap()]);
+    assert!(g.status.success());
+    // The event trace: one line per move and scan, then the tally; byte-identical on a rerun,
+    // as is the run record.
+    let trace = |name: &str| {
+        let (t, o) = (dir.join(format!("{name}.jsonl")), dir.join(format!("{name}.json")));
+        let r = stopscan(&[
+            "explore",
+            "--env",
+            env.to_str().unwrap(),
+            "--strategy",
+            "greedy_nbv",
+            "--trace",
+            t.to_str().unwrap(),
+            "--out",
+            o.to_str().unwrap(),
+        ]);
+        assert!(r.status.success(), "{}", String::from_utf8_lossy(&r.stderr));
+        let out = (std::fs::read(&t).unwrap(), std::fs::read(&o).unwrap());
+        std::fs::remove_file(t).unwrap();
+        std::fs::remove_file(o).unwrap();
+        out
+    };
+    let (t1, r1) = trace("a");
+    let (t2, r2) = trace("b");
+    assert_eq!(t1, t2, "the trace is deterministic");
+    assert_eq!(r1, r2, "the run record is deterministic");
+    let rec: Value = serde_json::from_slice(&r1).unwrap();
+    let lines: Vec<Value> =
+        String::from_utf8(t1).unwrap().lines().map(|l| serde_json::from_str(l).unwrap()).collect();
+    let m = &rec["metrics"];
+    assert_eq!(lines.len() as u64, m["scans"].as_u64().unwrap() + m["moves"].as_u64().unwrap() + 1);
+    assert_eq!(lines.last().unwrap()["event"], "finish");
+    assert_eq!(lines[0]["event"], "scan");
+    // With a range limit: the paper's range-limited algorithm, Lemma 4's bound, area / πR².
+    let vr = json(&[
+        "explore",
+        "--env",
+        env.to_str().unwrap(),
+        "--range",
+        "1.5",
+        "--strategy",
+        "range_limited",
+        "--out",
+        dir.join("range.json").to_str().unwrap(),
+    ]);
+    assert_eq!(vr["sensor"]["range"], 1.5);
+    assert!(vr["bounds"]["scans_upper_rule"].as_str().unwrap().contains("Lemma 4"));
+    assert!(
+        vr["metrics"]["scans"].as_u64().unwrap() <= vr["bounds"]["scans_upper"].as_u64().unwrap()
+    );
+    assert!(
+        vr["metrics"]["scans"].as_u64().unwrap() >= vr["bounds"]["scans_lower"].as_u64().unwrap()
+    );
+    assert_eq!(vr["metrics"]["open_windows"], 0);
+    assert!(f(&vr["metrics"], "coverage") >= 1.0 - 1e-6);
+    let bad = stopscan(&["explore", "--env", env.to_str().unwrap(), "--range", "0"]);
+    assert!(String::from_utf8_lossy(&bad.stderr).contains("--range must be a positive"));
+}
+
+#[test]
 fn explore_and_generate() {
     let dir = temp("explore");
     std::fs::create_dir_all(&dir).unwrap();
@@ -110,30 +175,6 @@ fn explore_and_generate() {
     // The offline optimum (integer programming) is r + 1 too: the algorithm is optimal here.
     assert_eq!(v["bounds"]["optimum"], 6, "{}", v["bounds"]);
     assert_eq!(v["bounds"]["competitive_ratio"], 1.0);
-    // With a range limit: the paper's range-limited algorithm, Lemma 4's bound, area / πR².
-    let vr = json(&[
-        "explore",
-        "--env",
-        env.to_str().unwrap(),
-        "--range",
-        "1.5",
-        "--strategy",
-        "range_limited",
-        "--out",
-        dir.join("range.json").to_str().unwrap(),
-    ]);
-    assert_eq!(vr["sensor"]["range"], 1.5);
-    assert!(vr["bounds"]["scans_upper_rule"].as_str().unwrap().contains("Lemma 4"));
-    assert!(
-        vr["metrics"]["scans"].as_u64().unwrap() <= vr["bounds"]["scans_upper"].as_u64().unwrap()
-    );
-    assert!(
-        vr["metrics"]["scans"].as_u64().unwrap() >= vr["bounds"]["scans_lower"].as_u64().unwrap()
-    );
-    assert_eq!(vr["metrics"]["open_windows"], 0);
-    assert!(f(&vr["metrics"], "coverage") >= 1.0 - 1e-6);
-    let bad = stopscan(&["explore", "--env", env.to_str().unwrap(), "--range", "0"]);
-    assert!(String::from_utf8_lossy(&bad.stderr).contains("--range must be a positive"));
     assert!((f(&v["metrics"], "scan_time_total") - 12.0).abs() < 1e-12);
     assert!(dir.join("s.svg").exists() && out.exists());
     // A folder: a sweep with every strategy, as CSV.
@@ -149,7 +190,6 @@ fn explore_and_generate() {
     assert!(g2.status.success());
     std::fs::remove_file(dir.join("s.svg")).unwrap();
     std::fs::remove_file(&out).unwrap();
-    std::fs::remove_file(dir.join("range.json")).unwrap();
     let sweep = stopscan(&[
         "explore",
         "--env",

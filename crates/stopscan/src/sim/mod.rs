@@ -27,3 +27,78 @@ pub trait Observer<P, O> {
 pub struct NoObserver;
 
 impl<P, O> Observer<P, O> for NoObserver {}
+
+/// Several observers as one: every event goes to each in order; the run stops when any of
+/// them asks to.
+pub struct Fanout<'a, P, O>(pub Vec<&'a mut dyn Observer<P, O>>);
+
+impl<P, O> Observer<P, O> for Fanout<'_, P, O> {
+    fn on_move(&mut self, to: &P, metres: f64) -> ControlFlow<()> {
+        let mut flow = ControlFlow::Continue(());
+        for o in &mut self.0 {
+            if o.on_move(to, metres).is_break() {
+                flow = ControlFlow::Break(());
+            }
+        }
+        flow
+    }
+    fn on_scan(&mut self, at: &P, observation: &O) -> ControlFlow<()> {
+        let mut flow = ControlFlow::Continue(());
+        for o in &mut self.0 {
+            if o.on_scan(at, observation).is_break() {
+                flow = ControlFlow::Break(());
+            }
+        }
+        flow
+    }
+    fn on_finish(&mut self, tally: &crate::protocol::Tally) {
+        for o in &mut self.0 {
+            o.on_finish(tally);
+        }
+    }
+}
+
+/// The trace recorder: one JSON object per line and per event, written (and flushed) as it
+/// happens, so a trace survives a crash up to its last event: `{"event":"move","to":[x,y],
+/// "metres":m}`, `{"event":"scan","at":[x,y],"observation":{..}}`, `{"event":"finish",
+/// "tally":{..}}`. A write error stops the run and is kept in [`JsonLinesTrace::error`].
+pub struct JsonLinesTrace<W: std::io::Write> {
+    out: W,
+    /// The first write error, if any.
+    pub error: Option<std::io::Error>,
+}
+
+impl<W: std::io::Write> JsonLinesTrace<W> {
+    /// A recorder writing to `out`.
+    pub fn new(out: W) -> Self {
+        Self { out, error: None }
+    }
+
+    fn line(&mut self, v: &serde_json::Value) -> ControlFlow<()> {
+        let r = serde_json::to_writer(&mut self.out, v)
+            .map_err(std::io::Error::from)
+            .and_then(|()| self.out.write_all(b"\n"))
+            .and_then(|()| self.out.flush());
+        match r {
+            Ok(()) => ControlFlow::Continue(()),
+            Err(e) => {
+                self.error.get_or_insert(e);
+                ControlFlow::Break(())
+            }
+        }
+    }
+}
+
+impl<P: serde::Serialize, O: serde::Serialize, W: std::io::Write> Observer<P, O>
+    for JsonLinesTrace<W>
+{
+    fn on_move(&mut self, to: &P, metres: f64) -> ControlFlow<()> {
+        self.line(&serde_json::json!({"event": "move", "to": to, "metres": metres}))
+    }
+    fn on_scan(&mut self, at: &P, observation: &O) -> ControlFlow<()> {
+        self.line(&serde_json::json!({"event": "scan", "at": at, "observation": observation}))
+    }
+    fn on_finish(&mut self, tally: &crate::protocol::Tally) {
+        let _ = self.line(&serde_json::json!({"event": "finish", "tally": tally}));
+    }
+}
