@@ -296,3 +296,18 @@ fn views_benchmarks_on_the_small_shared_polygons() {
     assert!(r.notes[0].starts_with(&format!("{} of {} runs", 3 * n, 3 * n)), "{}", r.notes[0]);
     assert!(r.notes[1].starts_with(&format!("{} of {} runs", 3 * n, 3 * n)), "{}", r.notes[1]);
 }
+
+/// The visibility benchmark's random polygon with holes (skipped without `../shared`):
+/// within r + 1, nothing left open, legal moves, from the file's first query point.
+#[test]
+fn the_shared_random_polygon_with_holes() {
+    let path = std::path::PathBuf::from(env!("CARGO_MANIFEST_DIR"))
+        .join("../../../shared/bench/visibility/env_100.txt");
+    if !path.exists() {
+        eprintln!("skipped: ../shared is absent");
+        return;
+    }
+    let env = stopscan::io::read_environment(&path).unwrap();
+    let start = env.queries[0];
+    check(&Instance { domain: env.domain, start }, "env_100");
+}

@@ -280,3 +280,36 @@ mod tests {
         assert_eq!(iv, vec![[0.0, 1.0]]);
     }
 }
+#[cfg(test)]
+mod brute_force {
+    use super::*;
+    use rand::{RngExt, SeedableRng};
+    #[test]
+    fn side_cover_matches_point_tests_on_random_polygons() {
+        let mut rng = rand_chacha::ChaCha8Rng::seed_from_u64(1);
+        for it in 0..2000 {
+            let n = rng.random_range(3..12);
+            let mut poly: Vec<Point> = (0..n)
+                .map(|k| {
+                    let a = k as f64 / n as f64 * std::f64::consts::TAU;
+                    let r = rng.random_range(1.0..5.0);
+                    [r * a.cos(), r * a.sin()]
+                })
+                .collect();
+            if it % 2 == 0 {
+                poly.reverse();
+            }
+            let a = [rng.random_range(-6.0..6.0), rng.random_range(-6.0..6.0)];
+            let b = [rng.random_range(-6.0..6.0), rng.random_range(-6.0..6.0)];
+            let mut iv = Vec::new();
+            side_cover(a, b, &poly, bounds_of(&poly), &mut iv);
+            for k in 0..200 {
+                let t = (k as f64 + 0.5) / 200.0;
+                let m = [a[0] + t * (b[0] - a[0]), a[1] + t * (b[1] - a[1])];
+                let inside = ring_side(&poly, m) == RingSide::Inside;
+                let got = iv.iter().any(|x| x[0] <= t && t <= x[1]);
+                assert_eq!(inside, got, "it {it} t {t} poly {poly:?} a {a:?} b {b:?} iv {iv:?}");
+            }
+        }
+    }
+}
