@@ -291,7 +291,7 @@ mod brute_force {
             let n = rng.random_range(3..12);
             let mut poly: Vec<Point> = (0..n)
                 .map(|k| {
-                    let a = k as f64 / n as f64 * std::f64::consts::TAU;
+                    let a = f64::from(k) / f64::from(n) * std::f64::consts::TAU;
                     let r = rng.random_range(1.0..5.0);
                     [r * a.cos(), r * a.sin()]
                 })
