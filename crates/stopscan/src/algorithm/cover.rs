@@ -304,7 +304,7 @@ mod brute_force {
             let mut iv = Vec::new();
             side_cover(a, b, &poly, bounds_of(&poly), &mut iv);
             for k in 0..200 {
-                let t = (k as f64 + 0.5) / 200.0;
+                let t = (f64::from(k) + 0.5) / 200.0;
                 let m = [a[0] + t * (b[0] - a[0]), a[1] + t * (b[1] - a[1])];
                 let inside = ring_side(&poly, m) == RingSide::Inside;
                 let got = iv.iter().any(|x| x[0] <= t && t <= x[1]);
