@@ -18,7 +18,7 @@
 
 use serde::{Deserialize, Serialize};
 
-use super::known::Known;
+use super::known::{Known, Placement};
 use super::{PolygonFeedback, PolygonStrategy};
 use crate::kernel::Point;
 use crate::protocol::Action;
@@ -34,6 +34,13 @@ impl DepthFirst {
     /// A fresh strategy.
     pub fn new() -> Self {
         Self::default()
+    }
+
+    /// A fresh strategy that places each viewpoint by `placement` on its window.
+    pub fn with_placement(placement: Placement) -> Self {
+        let mut s = Self::default();
+        s.known.placement = placement;
+        s
     }
 
     /// Steps 3–6: find the next viewpoint from the deepest view with an unexplored window,

@@ -55,9 +55,25 @@ pub(super) struct Target {
     off_gap: bool,
 }
 
+/// Where on the uncovered part of a window the next viewpoint goes (the paper leaves it open:
+/// "choose a point z on any constructed edge", and notes that the choice decides the count).
+#[derive(Debug, Clone, Copy, Default, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum Placement {
+    /// The middle of the part (the default).
+    #[default]
+    Middle,
+    /// Near the part's end farthest from the view's viewpoint (a thousandth of the part in):
+    /// deep behind the reflex vertex, as in the paper's Fig. 11.
+    Far,
+}
+
 /// The views taken so far.
 #[derive(Debug, Clone, Default, PartialEq, Serialize, Deserialize)]
 pub(super) struct Known {
+    /// Where on an unexplored window part the next viewpoint goes.
+    #[serde(default)]
+    pub(super) placement: Placement,
     pub(super) views: Vec<View>,
     /// The window part the next scan is for.
     pending: Option<Target>,
@@ -163,7 +179,15 @@ impl Known {
         let gap = cover::first_gap(covered, w.tol)?;
         let (dx, dy) = (to[0] - from[0], to[1] - from[1]);
         let open = (1.0 - covered.iter().map(|c| c[1] - c[0]).sum::<f64>()) * dx.hypot(dy);
-        let tm = 0.5 * (gap[0] + gap[1]);
+        let tm = match self.placement {
+            Placement::Middle => 0.5 * (gap[0] + gap[1]),
+            Placement::Far => {
+                let at = self.views[view].at;
+                let d = |p: Point| (p[0] - at[0]).hypot(p[1] - at[1]);
+                let inset = 1e-3 * (gap[1] - gap[0]);
+                if d(to) >= d(from) { gap[1] - inset } else { gap[0] + inset }
+            }
+        };
         let x = [from[0] + tm * dx, from[1] + tm * dy];
         // Windows are radial, so the step goes sideways into the region (left of the window,
         // which runs counter-clockwise around it), not toward the viewpoint: a move along the
