@@ -39,8 +39,13 @@ impl GreedyNbv {
         let Some(cur) = self.current else { return Action::Done };
         let mut best: Option<(f64, usize, Target)> = None;
         for v in 0..self.known.views.len() {
+            if self.known.views[v].explored {
+                continue;
+            }
+            let mut any = false;
             for k in 0..self.known.views[v].windows_len() {
                 let Some((t, open)) = self.known.window_target(v, k) else { continue };
+                any = true;
                 let (pts, len) = self.known.route(cur, v);
                 let at = self.known.views[v].at;
                 let dist = len + (t.at[0] - at[0]).hypot(t.at[1] - at[1]);
@@ -54,6 +59,7 @@ impl GreedyNbv {
                     best = Some((rate, v, t));
                 }
             }
+            self.known.views[v].explored = !any;
         }
         let Some((_, v, t)) = best else { return Action::Done };
         let (pts, _) = self.known.route(cur, v);

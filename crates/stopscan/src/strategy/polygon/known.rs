@@ -19,6 +19,9 @@ pub(super) struct View {
     pub(super) pieces: Vec<BoundaryPiece>,
     windows: Vec<Window>,
     pub(super) parent: Option<usize>,
+    /// Every window explored: covered parts only grow, so it stays so and is skipped.
+    #[serde(default)]
+    pub(super) explored: bool,
 }
 
 /// A window and how far its exploration test has got: the parts of it (as parameter
@@ -136,6 +139,7 @@ impl Known {
             pieces: obs.region.boundary.clone(),
             windows,
             parent,
+            explored: false,
         });
         if let Some(t) = pending.filter(|t| t.off_gap) {
             self.views[t.view].windows[t.window].no_junction = true;
@@ -150,7 +154,13 @@ impl Known {
     /// view's region (less where the region is thinner), so the straight move there from the
     /// viewpoint is safe, and from it the whole far side of the window is seen.
     pub(super) fn next_target(&mut self, view: usize) -> Option<Target> {
-        (0..self.views[view].windows.len()).find_map(|k| self.window_target(view, k).map(|t| t.0))
+        if self.views[view].explored {
+            return None;
+        }
+        let t = (0..self.views[view].windows.len())
+            .find_map(|k| self.window_target(view, k).map(|t| t.0));
+        self.views[view].explored = t.is_none();
+        t
     }
 
     /// Brings window `k` of `view` up to date with the views taken since it was last tested,

@@ -9,8 +9,8 @@ mod nearest_frontier;
 mod range_limited;
 
 pub use depth_first::DepthFirst;
-pub use known::Placement;
 pub use greedy_nbv::GreedyNbv;
+pub use known::Placement;
 pub use nearest_frontier::NearestFrontier;
 pub use range_limited::RangeLimited;
 
