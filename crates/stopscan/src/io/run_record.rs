@@ -3,7 +3,6 @@
 
 use serde::{Deserialize, Serialize};
 
-use crate::algorithm::region::Region;
 use crate::kernel::Point;
 use crate::offline::polygon::{References, upper_bound};
 use crate::protocol::CostModel;
@@ -78,10 +77,11 @@ pub struct Metrics {
     pub move_time_total: f64,
     /// `distance / speed`.
     pub travel_time_total: f64,
-    /// Area of the union of the regions seen, m².
+    /// The free area less what no scan covers, m².
     pub covered_area: f64,
-    /// `covered_area / free_area` (the union's area is measured by i_overlay, good to about
-    /// 1e-8 relative, so it can exceed 1 by that much).
+    /// `covered_area / free_area`, where the area not covered counts only the pieces of the
+    /// free space minus the scanned regions that an exact point test confirms unseen
+    /// ([`crate::algorithm::cover::uncovered_area`]): 1 exactly on a complete run.
     pub coverage: f64,
     /// Parts of windows (and range chords) of the scanned regions whose far side no other scan
     /// covers and lies in the free space (exact test up to rounding of cut points): 0
@@ -151,7 +151,7 @@ impl RunRecord {
         let (upper, rule) = upper_bound(domain, world.range());
         let optimum = refs.optimum.as_ref().filter(|o| o.certified).map(|o| o.viewpoints.len());
         let polys: Vec<Vec<Point>> = run.scans.iter().map(|s| s.region.polygon.clone()).collect();
-        let covered = Region::union_all(&polys).area();
+        let uncovered = crate::algorithm::cover::uncovered_area(domain, &polys);
         let regions: Vec<_> = run.scans.iter().map(|s| s.region.clone()).collect();
         let open_windows = crate::algorithm::cover::open_windows(&regions, |p| {
             domain.locate(p) == crate::geometry::Location::Interior
@@ -188,8 +188,8 @@ impl RunRecord {
                 scan_time_total: run.time.scan_time_total,
                 move_time_total: run.time.move_time_total,
                 travel_time_total: run.time.travel_time_total,
-                covered_area: covered,
-                coverage: covered / free,
+                covered_area: free - uncovered,
+                coverage: 1.0 - uncovered / free,
                 open_windows,
             },
             bounds: Bounds {
