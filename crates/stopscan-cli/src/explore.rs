@@ -107,8 +107,8 @@ fn explore(j: &Job) -> anyhow::Result<Outcome> {
             run
         }
     };
-    let vis = stopscan::algorithm::visibility::Visibility::new(j.domain.clone())?;
-    let refs = stopscan::offline::polygon::references(&vis, j.start, j.range, j.limits)?;
+    let refs =
+        stopscan::offline::polygon::references(world.visibility(), j.start, j.range, j.limits)?;
     let regions: Vec<_> = run.scans.iter().map(|s| s.region.clone()).collect();
     let svg = stopscan::render::exploration_svg(j.domain, &regions, &run.path);
     let record = RunRecord::polygon(j.name, &world, j.strategy, &j.cost, &run, &refs, j.seed);

@@ -11,6 +11,7 @@
 //! middle, or, where the piece runs along a polygon edge, by the side the polygon lies on.
 
 use crate::algorithm::visibility::{BoundaryPiece, VisibilityRegion};
+use crate::geometry::signed_area_of;
 use crate::kernel::{Point, RingSide, orient_sign, ring_side};
 
 /// Parameter intervals `[t0, t1] ⊂ [0, 1]`, sorted and disjoint.
@@ -40,7 +41,7 @@ pub fn side_cover(a: Point, b: Point, poly: &[Point], bounds: [Point; 2], out: &
         return;
     }
     let param = |p: Point| ((p[0] - a[0]) * dx + (p[1] - a[1]) * dy) / len2;
-    let ccw = signed_area(poly) > 0.0;
+    let ccw = signed_area_of(poly) > 0.0;
     let n = poly.len();
     let mut cuts = vec![0.0, 1.0];
     // Pieces along polygon edges: (t0, t1, covered).
@@ -238,8 +239,8 @@ pub fn uncovered_area(domain: &crate::geometry::Domain, seen: &[Vec<Point>]) -> 
     let mut total = 0.0;
     for shape in &diff.shapes {
         let Some(outer) = shape.first().filter(|o| o.len() >= 3) else { continue };
-        let area = signed_area(outer).abs() * 0.5
-            - shape[1..].iter().map(|h| signed_area(h).abs() * 0.5).sum::<f64>();
+        let area = signed_area_of(outer).abs()
+            - shape[1..].iter().map(|h| signed_area_of(h).abs()).sum::<f64>();
         if area <= 0.0 {
             continue;
         }
@@ -259,7 +260,7 @@ pub fn uncovered_area(domain: &crate::geometry::Domain, seen: &[Vec<Point>]) -> 
 fn probe(shape: &[Vec<Point>]) -> Option<Point> {
     let outer = &shape[0];
     let n = outer.len();
-    let left = signed_area(outer) > 0.0;
+    let left = signed_area_of(outer) > 0.0;
     let mut edges: Vec<usize> = (0..n).collect();
     let len = |i: usize| {
         let (a, b) = (outer[i], outer[(i + 1) % n]);
@@ -290,17 +291,6 @@ pub fn bounds_of(points: &[Point]) -> [Point; 2] {
         b = [[b[0][0].min(p[0]), b[0][1].min(p[1])], [b[1][0].max(p[0]), b[1][1].max(p[1])]];
     }
     b
-}
-
-fn signed_area(poly: &[Point]) -> f64 {
-    let n = poly.len();
-    let o = poly[0];
-    let mut s = 0.0;
-    for i in 1..n.saturating_sub(1) {
-        let (p, q) = (poly[i], poly[i + 1]);
-        s += (p[0] - o[0]) * (q[1] - o[1]) - (q[0] - o[0]) * (p[1] - o[1]);
-    }
-    s
 }
 
 #[cfg(test)]

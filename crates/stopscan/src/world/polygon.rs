@@ -32,6 +32,11 @@ impl PolygonWorld {
         Ok(Self { vis: Visibility::new(domain)?, range })
     }
 
+    /// The preprocessed domain (for offline references; strategies never get it).
+    pub fn visibility(&self) -> &Visibility {
+        &self.vis
+    }
+
     /// The sensor's range, if limited.
     pub fn range(&self) -> Option<f64> {
         self.range

@@ -18,7 +18,7 @@
 
 use serde::{Deserialize, Serialize};
 
-use super::known::{Known, Placement};
+use super::known::{self, Known, Placement};
 use super::{PolygonFeedback, PolygonStrategy};
 use crate::kernel::Point;
 use crate::protocol::Action;
@@ -43,9 +43,11 @@ impl DepthFirst {
         s
     }
 
-    /// Steps 3–6: find the next viewpoint from the deepest view with an unexplored window,
-    /// retracing the search path back to it.
-    fn plan(&mut self) -> Action<Point> {
+    /// Steps 2–6 after the scan that became view `v`: push it on the search path, then find
+    /// the next viewpoint from the deepest view with an unexplored window, retracing the
+    /// search path back to it.
+    fn plan(&mut self, v: usize) -> Action<Point> {
+        self.stack.push(v);
         let mut route = Vec::new();
         loop {
             let Some(&top) = self.stack.last() else { return Action::Done };
@@ -66,15 +68,6 @@ impl PolygonStrategy for DepthFirst {
     }
 
     fn act(&mut self, feedback: &PolygonFeedback) -> Action<Point> {
-        match feedback {
-            PolygonFeedback::Start(_) => Action::Scan,
-            PolygonFeedback::Arrived => self.known.next_move(),
-            PolygonFeedback::Scanned(obs) => {
-                let parent = self.stack.last().copied();
-                let v = self.known.add(obs, parent);
-                self.stack.push(v);
-                self.plan()
-            }
-        }
+        known::act(self, feedback, |s| &mut s.known, Self::plan)
     }
 }

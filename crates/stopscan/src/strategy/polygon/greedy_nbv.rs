@@ -15,7 +15,7 @@
 
 use serde::{Deserialize, Serialize};
 
-use super::known::{Known, Target};
+use super::known::{self, Known, Target};
 use super::{PolygonFeedback, PolygonStrategy};
 use crate::kernel::Point;
 use crate::protocol::{Action, CostModel};
@@ -25,29 +25,28 @@ use crate::protocol::{Action, CostModel};
 pub struct GreedyNbv {
     cost: CostModel,
     known: Known,
-    current: Option<usize>,
-    target_parent: Option<usize>,
 }
 
 impl GreedyNbv {
     /// A fresh strategy that prices candidates with `cost`.
     pub fn new(cost: CostModel) -> Self {
-        Self { cost, known: Known::default(), current: None, target_parent: None }
+        Self { cost, known: Known::default() }
     }
 
-    fn plan(&mut self) -> Action<Point> {
-        let Some(cur) = self.current else { return Action::Done };
-        let mut best: Option<(f64, usize, Target)> = None;
+    /// After the scan that became view `cur`: the candidate with the most predicted area per
+    /// second.
+    fn plan(&mut self, cur: usize) -> Action<Point> {
+        let mut best: Option<(f64, Target)> = None;
         for v in 0..self.known.views.len() {
             if self.known.views[v].explored {
                 continue;
             }
+            let (pts, len) = self.known.route(cur, v);
+            let at = self.known.views[v].at;
             let mut any = false;
             for k in 0..self.known.views[v].windows_len() {
                 let Some((t, open)) = self.known.window_target(v, k) else { continue };
                 any = true;
-                let (pts, len) = self.known.route(cur, v);
-                let at = self.known.views[v].at;
                 let dist = len + (t.at[0] - at[0]).hypot(t.at[1] - at[1]);
                 let moves = pts.len() + 1;
                 let secs = self.cost.move_time * moves as f64
@@ -56,15 +55,13 @@ impl GreedyNbv {
                 let gain = std::f64::consts::PI * open * open / 8.0;
                 let rate = gain / secs.max(f64::MIN_POSITIVE);
                 if best.as_ref().is_none_or(|b| rate > b.0) {
-                    best = Some((rate, v, t));
+                    best = Some((rate, t));
                 }
             }
             self.known.views[v].explored = !any;
         }
-        let Some((_, v, t)) = best else { return Action::Done };
-        let (pts, _) = self.known.route(cur, v);
-        self.target_parent = Some(v);
-        self.known.go(pts, t)
+        let Some((_, t)) = best else { return Action::Done };
+        self.known.go_from(cur, t)
     }
 }
 
@@ -74,14 +71,6 @@ impl PolygonStrategy for GreedyNbv {
     }
 
     fn act(&mut self, feedback: &PolygonFeedback) -> Action<Point> {
-        match feedback {
-            PolygonFeedback::Start(_) => Action::Scan,
-            PolygonFeedback::Arrived => self.known.next_move(),
-            PolygonFeedback::Scanned(obs) => {
-                let v = self.known.add(obs, self.target_parent);
-                self.current = Some(v);
-                self.plan()
-            }
-        }
+        known::act(self, feedback, |s| &mut s.known, Self::plan)
     }
 }

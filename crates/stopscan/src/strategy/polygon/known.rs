@@ -10,6 +10,8 @@ use crate::kernel::{Point, RingSide, ring_side, segments_intersect};
 use crate::protocol::Action;
 use crate::protocol::polygon::PolygonObservation;
 
+use super::PolygonFeedback;
+
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 pub(super) struct View {
     pub(super) at: Point,
@@ -102,10 +104,12 @@ impl View {
 }
 
 impl Known {
-    /// Records a scan taken from inside the region of view `parent`; the target it was taken
-    /// for counts as handled.
-    pub(super) fn add(&mut self, obs: &PolygonObservation, parent: Option<usize>) -> usize {
+    /// Records a scan, taken at the pending target (inside its view's region, which becomes
+    /// the new view's parent in the tree of moves); the target counts as handled.
+    pub(super) fn add(&mut self, obs: &PolygonObservation) -> usize {
         let pending = self.pending.take();
+        // The view the scan's target belonged to: the target lies in its region.
+        let parent = pending.map(|t| t.view);
         if let Some(t) = pending.filter(|t| !t.off_gap) {
             self.handled(t);
         }
@@ -252,6 +256,13 @@ impl Known {
         cover::merge(&mut w.covered);
     }
 
+    /// Plans a trip from view `from`'s viewpoint along the tree of moves to the view the
+    /// target belongs to, then to the target, then a scan.
+    pub(super) fn go_from(&mut self, from: usize, target: Target) -> Action<Point> {
+        let (waypoints, _) = self.route(from, target.view);
+        self.go(waypoints, target)
+    }
+
     /// Plans a trip: drive through `waypoints` (in order) to the target, then scan.
     pub(super) fn go(&mut self, mut waypoints: Vec<Point>, target: Target) -> Action<Point> {
         waypoints.push(target.at);
@@ -299,5 +310,23 @@ impl Known {
             prev = *p;
         }
         (pts, len)
+    }
+}
+
+/// What every polygon strategy does with feedback: scan at the start, drive the planned trip,
+/// and after each scan record it in `known(s)` and ask `plan(s, view)` for the next trip.
+pub(super) fn act<S>(
+    s: &mut S,
+    feedback: &PolygonFeedback,
+    known: fn(&mut S) -> &mut Known,
+    plan: fn(&mut S, usize) -> Action<Point>,
+) -> Action<Point> {
+    match feedback {
+        PolygonFeedback::Start(_) => Action::Scan,
+        PolygonFeedback::Arrived => known(s).next_move(),
+        PolygonFeedback::Scanned(obs) => {
+            let v = known(s).add(obs);
+            plan(s, v)
+        }
     }
 }

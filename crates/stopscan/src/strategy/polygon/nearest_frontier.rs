@@ -8,7 +8,7 @@
 
 use serde::{Deserialize, Serialize};
 
-use super::known::{Known, Target};
+use super::known::{self, Known, Target};
 use super::{PolygonFeedback, PolygonStrategy};
 use crate::kernel::Point;
 use crate::protocol::Action;
@@ -17,8 +17,6 @@ use crate::protocol::Action;
 #[derive(Debug, Clone, Default, PartialEq, Serialize, Deserialize)]
 pub struct NearestFrontier {
     known: Known,
-    current: Option<usize>,
-    target_parent: Option<usize>,
 }
 
 impl NearestFrontier {
@@ -27,22 +25,21 @@ impl NearestFrontier {
         Self::default()
     }
 
-    fn plan(&mut self) -> Action<Point> {
-        let Some(cur) = self.current else { return Action::Done };
-        let mut best: Option<(f64, usize, Target, Vec<Point>)> = None;
+    /// After the scan that became view `cur`: the unexplored window nearest by travel.
+    fn plan(&mut self, cur: usize) -> Action<Point> {
+        let mut best: Option<(f64, Target)> = None;
         for v in 0..self.known.views.len() {
             if let Some(t) = self.known.next_target(v) {
-                let (mut pts, len) = self.known.route(cur, v);
+                let (_, len) = self.known.route(cur, v);
                 let at = self.known.views[v].at;
                 let total = len + (t.at[0] - at[0]).hypot(t.at[1] - at[1]);
                 if best.as_ref().is_none_or(|b| total < b.0) {
-                    best = Some((total, v, t, std::mem::take(&mut pts)));
+                    best = Some((total, t));
                 }
             }
         }
-        let Some((_, v, t, pts)) = best else { return Action::Done };
-        self.target_parent = Some(v);
-        self.known.go(pts, t)
+        let Some((_, t)) = best else { return Action::Done };
+        self.known.go_from(cur, t)
     }
 }
 
@@ -52,14 +49,6 @@ impl PolygonStrategy for NearestFrontier {
     }
 
     fn act(&mut self, feedback: &PolygonFeedback) -> Action<Point> {
-        match feedback {
-            PolygonFeedback::Start(_) => Action::Scan,
-            PolygonFeedback::Arrived => self.known.next_move(),
-            PolygonFeedback::Scanned(obs) => {
-                let v = self.known.add(obs, self.target_parent);
-                self.current = Some(v);
-                self.plan()
-            }
-        }
+        known::act(self, feedback, |s| &mut s.known, Self::plan)
     }
 }

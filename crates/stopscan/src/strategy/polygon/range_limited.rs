@@ -29,7 +29,7 @@
 
 use serde::{Deserialize, Serialize};
 
-use super::known::{Known, Target};
+use super::known::{self, Known, Target};
 use super::{PolygonFeedback, PolygonStrategy};
 use crate::algorithm::visibility::BoundaryPiece;
 use crate::kernel::Point;
@@ -39,8 +39,6 @@ use crate::protocol::Action;
 #[derive(Debug, Clone, Default, PartialEq, Serialize, Deserialize)]
 pub struct RangeLimited {
     known: Known,
-    current: Option<usize>,
-    target_parent: Option<usize>,
     /// Whether the robot stands at a wall (boundary following, Steps 4–5).
     on_wall: bool,
     /// Whether the pending target is at a wall.
@@ -134,18 +132,18 @@ impl RangeLimited {
         let inward = if len > 0.0 { [-dy / len, dx / len] } else { [0.0, 0.0] };
         let t = self.known.target_near(v, k, p, inward)?;
         self.visited.push(p);
-        Some(self.go_to(cur, v, t, true))
+        Some(self.go_to(cur, t, true))
     }
 
-    fn go_to(&mut self, cur: usize, v: usize, t: Target, on_wall: bool) -> Action<Point> {
-        let (pts, _) = self.known.route(cur, v);
-        self.target_parent = Some(v);
+    fn go_to(&mut self, cur: usize, t: Target, on_wall: bool) -> Action<Point> {
         self.target_on_wall = on_wall;
-        self.known.go(pts, t)
+        self.known.go_from(cur, t)
     }
 
-    fn plan(&mut self) -> Action<Point> {
-        let Some(cur) = self.current else { return Action::Done };
+    /// After the scan that became view `cur` (taken where the last target was, so at a wall
+    /// when that target was a wall junction).
+    fn plan(&mut self, cur: usize) -> Action<Point> {
+        self.on_wall = self.target_on_wall;
         // Step 4: boundary following from the wall the robot stands at.
         if self.on_wall
             && let Some(j) = self.follow(cur)
@@ -175,7 +173,7 @@ impl RangeLimited {
         // Steps 2 and 6: only arcs (or windows) left: an unexplored one, newest view first.
         for v in (0..self.known.views.len()).rev() {
             if let Some(t) = self.known.next_target(v) {
-                return self.go_to(cur, v, t, false);
+                return self.go_to(cur, t, false);
             }
         }
         Action::Done
@@ -200,15 +198,6 @@ impl PolygonStrategy for RangeLimited {
     }
 
     fn act(&mut self, feedback: &PolygonFeedback) -> Action<Point> {
-        match feedback {
-            PolygonFeedback::Start(_) => Action::Scan,
-            PolygonFeedback::Arrived => self.known.next_move(),
-            PolygonFeedback::Scanned(obs) => {
-                let v = self.known.add(obs, self.target_parent);
-                self.current = Some(v);
-                self.on_wall = self.target_on_wall;
-                self.plan()
-            }
-        }
+        known::act(self, feedback, |s| &mut s.known, Self::plan)
     }
 }
