@@ -60,6 +60,9 @@ pub(crate) enum Command {
         #[command(subcommand)]
         command: MapCommand,
     },
+    /// A team of robots explores an unknown region of interest (Algorithm 1 of the ROI paper),
+    /// static or drifting; writes a run record and an SVG replay.
+    Roi(RoiArgs),
     /// Reproduce a paper table or figure: the paper's value beside ours.
     Reproduce(ReproduceArgs),
     /// Throughput figures as JSON.
@@ -305,6 +308,71 @@ pub(crate) struct ExploreArgs {
     pub(crate) trace: Option<PathBuf>,
 }
 
+#[derive(Debug, Args)]
+pub(crate) struct RoiArgs {
+    /// The region: a text grid (# region, . outside, S start), a PGM/PNG mask (grey ≥ 128 is
+    /// region), or a polygon (GeoJSON, WKT, .pol) explored through its outer grid approximation.
+    #[arg(long, conflicts_with_all = ["random", "resume"])]
+    pub(crate) grid: Option<PathBuf>,
+    /// A random region of this many 4-connected cells (seeded by --seed).
+    #[arg(long, conflicts_with = "resume")]
+    pub(crate) random: Option<usize>,
+    /// Robots (R).
+    #[arg(long, default_value_t = 1)]
+    pub(crate) robots: usize,
+    /// Robot speed S_r, m/s.
+    #[arg(long, default_value_t = 1.0)]
+    pub(crate) robot_speed: f64,
+    /// Speed S_p at which the region translates, m/s (must be below S_r).
+    #[arg(long, default_value_t = 0.0)]
+    pub(crate) roi_speed: f64,
+    /// Heading of the region's drift, degrees counter-clockwise from east (the grid's +x).
+    #[arg(long, default_value_t = 0.0, allow_hyphen_values = true)]
+    pub(crate) roi_heading_deg: f64,
+    /// Flight seconds per battery: a robot flies home to swap before it would run out, then
+    /// resumes from the vertex it left (the field experiment).
+    #[arg(long)]
+    pub(crate) battery_s: Option<f64>,
+    /// Write the mission state here after every step (atomically), for --resume.
+    #[arg(long, conflicts_with = "resume")]
+    pub(crate) state: Option<PathBuf>,
+    /// Carry on with the mission saved in STATE (and keep writing it there).
+    #[arg(long, value_name = "STATE")]
+    pub(crate) resume: Option<PathBuf>,
+    /// Side of a cell, metres (masks and polygons).
+    #[arg(long, default_value_t = 1.0)]
+    pub(crate) cell_m: f64,
+    /// Pixels per cell side, for masks.
+    #[arg(long, default_value_t = 1)]
+    pub(crate) cell_px: usize,
+    /// The start cell ROW,COL for masks and grids without S (default: the first region cell).
+    #[arg(long, allow_hyphen_values = true)]
+    pub(crate) start: Option<String>,
+    /// Sense with the field pipeline in simulation: a synthetic camera, the frame classifier
+    /// and a vote over --frames frames per scan (conservative marking).
+    #[arg(long)]
+    pub(crate) camera: bool,
+    /// Frames per scan with --camera (the paper: 5, voted 3 of 5).
+    #[arg(long, default_value_t = 5)]
+    pub(crate) frames: usize,
+    /// Sweep this box of cells ROW0,COL0,ROW1,COL1 lawn-mower fashion until the region is first
+    /// seen (needs --launch).
+    #[arg(long, allow_hyphen_values = true)]
+    pub(crate) search_box: Option<String>,
+    /// Where the robots take off and land, ROW,COL (with --search-box).
+    #[arg(long, allow_hyphen_values = true)]
+    pub(crate) launch: Option<String>,
+    /// Seconds per scan (the paper's model: 0).
+    #[arg(long, default_value_t = 0.0)]
+    pub(crate) scan_time: f64,
+    /// Seconds per move (the paper's model: 0).
+    #[arg(long, default_value_t = 0.0)]
+    pub(crate) move_time: f64,
+    /// Where to write the SVG replay (default: --out with .svg).
+    #[arg(long)]
+    pub(crate) svg: Option<PathBuf>,
+}
+
 #[derive(Debug, Clone, Copy, PartialEq, Eq, ValueEnum)]
 pub(crate) enum Family {
     /// A spiral corridor that needs r + 1 views (the paper's Fig. 9).
@@ -380,9 +448,10 @@ pub(crate) struct VisibilityArgs {
 pub(crate) struct ReproduceArgs {
     /// corner-table-2, corner-table-3, corner-table-4, corner-fig-4, corner-fig-6,
     /// corner-fig-7, corner-fig-8, circle-table-1, circle-fig-7, views-spiral, views-star,
-    /// views-benchmarks, or all.
+    /// views-benchmarks, roi-fig-7, or all.
     pub(crate) id: String,
-    /// Monte Carlo samples where the paper used sampling.
+    /// Monte Carlo samples where the paper used sampling (roi-fig-7: trials per point, at
+    /// most the paper's 100).
     #[arg(long, default_value_t = 1000)]
     pub(crate) samples: usize,
     /// The folder of benchmark environments (*.pol, ROS *.yaml) for views-benchmarks.

@@ -418,6 +418,12 @@ pub(crate) fn reproduce(a: &cli::ReproduceArgs, g: &Global) -> anyhow::Result<()
                         .map(|p| p.display().to_string()),
                 );
             }
+            for (name, text) in &r.tables {
+                let path = dir.join(name);
+                std::fs::write(&path, text)
+                    .with_context(|| format!("cannot write {}", path.display()))?;
+                files.push(path.display().to_string());
+            }
             let path = dir.join(format!("{id}.json"));
             write_json_atomic(
                 &path,

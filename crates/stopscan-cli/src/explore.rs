@@ -57,11 +57,11 @@ impl Progress {
 }
 
 impl<O> stopscan::sim::Observer<Point, O> for Progress {
-    fn on_move(&mut self, _to: &Point, metres: f64) -> std::ops::ControlFlow<()> {
+    fn on_move(&mut self, _robot: usize, _to: &Point, metres: f64) -> std::ops::ControlFlow<()> {
         self.metres += metres;
         std::ops::ControlFlow::Continue(())
     }
-    fn on_scan(&mut self, _at: &Point, _o: &O) -> std::ops::ControlFlow<()> {
+    fn on_scan(&mut self, _robot: usize, _at: &Point, _o: &O) -> std::ops::ControlFlow<()> {
         self.scans += 1;
         self.bar.set_message(format!("{} scans, {:.1} m", self.scans, self.metres));
         self.bar.tick();

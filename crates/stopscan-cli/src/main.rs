@@ -6,6 +6,7 @@ mod cli;
 mod corner;
 mod explore;
 mod output;
+mod roi;
 mod visibility;
 
 use std::io::Write;
@@ -57,6 +58,7 @@ fn run(args: &cli::Cli) -> anyhow::Result<()> {
         Some(cli::Command::Corner { command }) => corner::run(command, g),
         Some(cli::Command::Visibility(v)) => visibility::run(v, g),
         Some(cli::Command::Map { command: cli::MapCommand::Import(a) }) => visibility::import(a, g),
+        Some(cli::Command::Roi(a)) => roi::run(a, g),
         Some(cli::Command::Reproduce(r)) => corner::reproduce(r, g),
         Some(cli::Command::Bench(b)) => bench::run(b, g),
     }

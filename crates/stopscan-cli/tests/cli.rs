@@ -586,3 +586,205 @@ fn map_import_then_visibility_on_the_geojson() {
     assert_eq!(bad.status.code(), Some(2));
     assert!(String::from_utf8_lossy(&bad.stderr).contains("/no/such.yaml"));
 }
+
+/// `stopscan roi` on a text grid: every cell visited, everyone home, within Lemma 1, and a
+/// replay with one animated robot per robot.
+#[test]
+fn roi_explores_a_grid_and_writes_record_and_replay() {
+    let dir = temp("roi");
+    std::fs::create_dir_all(&dir).unwrap();
+    let grid = PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("../../fixtures/roi/lake.txt");
+    let out = dir.join("lake.json");
+    let r = json(&[
+        "roi",
+        "--grid",
+        grid.to_str().unwrap(),
+        "--robots",
+        "3",
+        "--roi-speed",
+        "0.25",
+        "--roi-heading-deg",
+        "90",
+        "--out",
+        out.to_str().unwrap(),
+    ]);
+    assert_eq!(r["cells"], 53);
+    assert_eq!(r["metrics"]["visited_cells"], 53);
+    assert_eq!(r["metrics"]["all_home"], true);
+    assert_eq!(r["bounds"]["within_lemma1"], true);
+    assert!(f(&r["metrics"], "time") <= f(&r["bounds"], "lemma1_upper"));
+    assert_eq!(r["robots"].as_array().unwrap().len(), 3);
+    for robot in r["robots"].as_array().unwrap() {
+        let cells = robot["cells"].as_array().unwrap();
+        assert_eq!(cells.first(), cells.last(), "robot returns to the start");
+        assert_eq!(cells.len(), robot["times"].as_array().unwrap().len());
+    }
+    let on_disk: Value = serde_json::from_str(&std::fs::read_to_string(&out).unwrap()).unwrap();
+    assert_eq!(on_disk, r);
+    let svg = std::fs::read_to_string(dir.join("lake.svg")).unwrap();
+    assert_eq!(svg.matches("<animateMotion").count(), 3);
+}
+
+#[test]
+fn roi_random_runs_are_seeded() {
+    let dir = temp("roi-seed");
+    std::fs::create_dir_all(&dir).unwrap();
+    let run = |seed: &str, name: &str| {
+        let p = dir.join(name);
+        let o = stopscan(&[
+            "roi",
+            "--random",
+            "150",
+            "--robots",
+            "4",
+            "--seed",
+            seed,
+            "--out",
+            p.to_str().unwrap(),
+        ]);
+        assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+        std::fs::read(p).unwrap()
+    };
+    assert_eq!(run("7", "a.json"), run("7", "b.json"), "same seed, same bytes");
+    assert_ne!(run("7", "a.json"), run("8", "c.json"));
+}
+
+#[test]
+fn roi_reports_bad_input_clearly() {
+    let dir = temp("roi-bad");
+    std::fs::create_dir_all(&dir).unwrap();
+    let bad = dir.join("bad.txt");
+    std::fs::write(&bad, "S##\n#?#\n").unwrap();
+    let o = stopscan(&["roi", "--grid", bad.to_str().unwrap()]);
+    assert_eq!(o.status.code(), Some(2));
+    let err = String::from_utf8_lossy(&o.stderr);
+    assert!(err.contains("bad.txt:2: unexpected '?' at column 2"), "{err}");
+    let o = stopscan(&["roi", "--random", "20", "--robot-speed", "1", "--roi-speed", "1"]);
+    assert!(String::from_utf8_lossy(&o.stderr).contains("must exceed the region's speed"));
+    let o = stopscan(&["roi", "--random", "20", "--robots", "0"]);
+    assert!(String::from_utf8_lossy(&o.stderr).contains("at least one robot"));
+    let o = stopscan(&["roi"]);
+    assert!(String::from_utf8_lossy(&o.stderr).contains("--grid FILE or --random CELLS"));
+    let state = dir.join("not-a-state.json");
+    std::fs::write(&state, "{\"format\": 3}").unwrap();
+    let o = stopscan(&["roi", "--resume", state.to_str().unwrap()]);
+    assert!(
+        String::from_utf8_lossy(&o.stderr).contains("not-a-state.json:1:"),
+        "{}",
+        String::from_utf8_lossy(&o.stderr)
+    );
+}
+
+/// The field pipeline end to end: a runway-like rectangle (a polygon, explored through its
+/// outer grid approximation), found by a lawn-mowing search, sensed by the synthetic camera
+/// with a 3-of-5 vote, with a battery that forces swaps.
+#[test]
+fn roi_field_pipeline_finds_and_maps_a_runway() {
+    let dir = temp("roi-field");
+    std::fs::create_dir_all(&dir).unwrap();
+    let runway = dir.join("runway.geojson");
+    // 92 m × 21 m, rotated by 20°, centred on the start.
+    let (c, s) = (20f64.to_radians().cos(), 20f64.to_radians().sin());
+    let ring: Vec<[f64; 2]> =
+        [(-46.0, -10.5), (46.0, -10.5), (46.0, 10.5), (-46.0, 10.5), (-46.0, -10.5)]
+            .iter()
+            .map(|&(x, y)| [x * c - y * s, x * s + y * c])
+            .collect();
+    let geo = serde_json::json!({"type": "Feature", "properties": {"start": [0.0, 0.0]},
+        "geometry": {"type": "Polygon", "coordinates": [ring]}});
+    std::fs::write(&runway, geo.to_string()).unwrap();
+    let out = dir.join("field.json");
+    let r = json(&[
+        "roi",
+        "--grid",
+        runway.to_str().unwrap(),
+        "--cell-m",
+        "4",
+        "--camera",
+        "--search-box",
+        "-12,-14,0,14",
+        "--launch",
+        "-12,-14",
+        "--battery-s",
+        "720",
+        "--out",
+        out.to_str().unwrap(),
+    ]);
+    let m = &r["metrics"];
+    assert_eq!(m["all_home"], true);
+    assert!(
+        r["robots"][0]["battery_swaps"].as_u64().unwrap() >= 1,
+        "12-minute batteries do not last"
+    );
+    assert!(f(m, "iou") > 0.7, "IoU {}", m["iou"]);
+    assert!(m["c_out"].as_u64().unwrap() > m["c_in"].as_u64().unwrap());
+    assert!(r["failures"].as_array().unwrap().is_empty());
+}
+
+/// Terminate a mission mid-way (SIGKILL), resume it from its state file: the run finishes
+/// with exactly the record of an uninterrupted run (nothing lost, nothing repeated).
+#[test]
+fn roi_mission_survives_kill_and_resume() {
+    let dir = temp("roi-kill");
+    std::fs::create_dir_all(&dir).unwrap();
+    let state = dir.join("mission.json");
+    let whole = dir.join("whole.json");
+    let resumed = dir.join("resumed.json");
+    let args =
+        ["roi", "--random", "400", "--robots", "3", "--roi-speed", "0.2", "--battery-s", "150"];
+    let o = stopscan(&[&args[..], &["--out", whole.to_str().unwrap()]].concat());
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    let mut child = Command::new(env!("CARGO_BIN_EXE_stopscan"))
+        .args(args)
+        .args(["--state", state.to_str().unwrap(), "--out", resumed.to_str().unwrap()])
+        .stdout(std::process::Stdio::null())
+        .spawn()
+        .unwrap();
+    // Wait for some steps to be written, then kill.
+    let steps = |p: &PathBuf| -> u64 {
+        std::fs::read_to_string(p)
+            .ok()
+            .and_then(|t| serde_json::from_str::<Value>(&t).ok())
+            .and_then(|v| v["mission"]["team"]["steps"].as_u64())
+            .unwrap_or(0)
+    };
+    let t0 = std::time::Instant::now();
+    while steps(&state) < 40 {
+        assert!(t0.elapsed().as_secs() < 120, "the mission never wrote its state");
+        std::thread::sleep(std::time::Duration::from_millis(5));
+    }
+    child.kill().unwrap();
+    child.wait().unwrap();
+    let at_kill = steps(&state);
+    let saved: Value = serde_json::from_str(&std::fs::read_to_string(&state).unwrap()).unwrap();
+    let done =
+        saved["mission"]["team"]["robots"].as_array().unwrap().iter().all(|r| r["done"] == true);
+    assert!(
+        !done,
+        "killed after the mission ended ({at_kill} steps); the test needs a longer mission"
+    );
+    assert!(!resumed.exists(), "no run record before the end");
+    let o = stopscan(&["roi", "--resume", state.to_str().unwrap()]);
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    assert_eq!(
+        std::fs::read(&whole).unwrap(),
+        std::fs::read(&resumed).unwrap(),
+        "the resumed mission differs from the uninterrupted one (killed at step {at_kill})"
+    );
+    assert!(steps(&state) > at_kill);
+}
+
+#[test]
+fn reproduce_roi_fig_7_writes_charts_and_csv() {
+    let dir = temp("fig7");
+    let r = json(&["reproduce", "roi-fig-7", "--samples", "4", "--out", dir.to_str().unwrap()]);
+    assert_eq!(r["id"], "roi-fig-7");
+    for f in
+        ["roi-fig-7b.png", "roi-fig-7b.svg", "roi-fig-7c.png", "roi-fig-7d.svg", "roi-fig-7.csv"]
+    {
+        assert!(dir.join(f).exists(), "{f} missing");
+    }
+    let csv = std::fs::read_to_string(dir.join("roi-fig-7.csv")).unwrap();
+    assert_eq!(csv.lines().count(), 31, "a header and 30 points");
+    assert!(r["notes"][0].as_str().unwrap().starts_with("120 of 120 trials are within"));
+}

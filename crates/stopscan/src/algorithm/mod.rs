@@ -1,6 +1,7 @@
 //! General algorithms with no robot concepts in them.
 
 pub mod cover;
+pub mod frame;
 pub mod mdp;
 pub mod nelder_mead;
 pub mod region;

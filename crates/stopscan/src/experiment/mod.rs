@@ -1,11 +1,12 @@
 //! Sweeps, Monte Carlo and paper reproductions: seeded, parallel, deterministic.
 
 pub mod corner;
+pub mod grid;
 pub mod polygon;
 
 /// Every reproduction identifier, of all families.
 pub fn ids() -> Vec<&'static str> {
-    corner::IDS.iter().chain(polygon::IDS).copied().collect()
+    corner::IDS.iter().chain(polygon::IDS).chain(grid::IDS).copied().collect()
 }
 
 /// Runs any reproduction by identifier.
@@ -15,6 +16,9 @@ pub fn ids() -> Vec<&'static str> {
 pub fn reproduce(id: &str, samples: usize, seed: u64) -> Result<Reproduction, ExperimentError> {
     reproduce_with_data(id, samples, seed, std::path::Path::new(DEFAULT_DATA))
 }
+
+/// Trials per point of `roi-fig-7` (the paper's 100); `--samples` lowers it.
+pub const ROI_TRIALS: usize = 100;
 
 /// Where `views-benchmarks` looks for its inputs unless told otherwise: the shared benchmark
 /// data beside a clone.
@@ -33,6 +37,9 @@ pub fn reproduce_with_data(
 ) -> Result<Reproduction, ExperimentError> {
     if polygon::IDS.contains(&id) {
         return polygon::reproduce(id, data);
+    }
+    if grid::IDS.contains(&id) {
+        return grid::reproduce(samples.min(ROI_TRIALS), seed);
     }
     corner::reproduce(id, samples, seed).map_err(|e| match e {
         ExperimentError::UnknownId(i, _) => ExperimentError::UnknownId(i, ids().join(", ")),
@@ -104,6 +111,9 @@ pub struct Reproduction {
     /// Policy images to write with `--out`.
     #[serde(skip)]
     pub images: Vec<(String, String, Vec<Vec<Cell>>)>,
+    /// Tables to write with `--out`: (file name, CSV text).
+    #[serde(skip)]
+    pub tables: Vec<(String, String)>,
 }
 
 /// Why an experiment could not run.

@@ -63,6 +63,7 @@ fn views_spiral() -> Result<Reproduction, ExperimentError> {
         notes: vec!["each turn hides the next leg, so every view removes exactly one window: r + 1 views, the paper's bound met with equality".into()],
         charts: vec![],
         images: vec![],
+        tables: vec![],
     })
 }
 
@@ -117,6 +118,7 @@ fn views_star() -> Result<Reproduction, ExperimentError> {
         ],
         charts: vec![],
         images: vec![],
+        tables: vec![],
     })
 }
 
@@ -231,6 +233,7 @@ fn views_benchmarks(data: &std::path::Path) -> Result<Reproduction, ExperimentEr
         notes,
         charts: vec![],
         images: vec![],
+        tables: vec![],
     })
 }
 

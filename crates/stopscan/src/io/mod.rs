@@ -2,6 +2,7 @@
 //! problem, and never panic.
 
 pub mod bench_format;
+pub mod grid;
 pub mod ros_map;
 pub mod run_record;
 pub mod text_formats;
@@ -29,6 +30,14 @@ pub enum LoadError {
         line: usize,
         /// What is wrong.
         reason: String,
+    },
+    /// A region of interest is invalid (empty, disconnected, start outside).
+    #[error("{file}: {source}")]
+    InvalidRoi {
+        /// The file.
+        file: String,
+        /// The problem, with a cell where it is.
+        source: crate::world::grid::InvalidRoi,
     },
     /// The text parses but the environment is invalid.
     #[error("{file}: {source}")]

@@ -106,13 +106,13 @@ fn read_yaml(path: &Path) -> Result<MapYaml, LoadError> {
 }
 
 /// A grey image, row 0 at the top.
-struct Grey {
-    w: usize,
-    h: usize,
-    px: Vec<u8>,
+pub(crate) struct Grey {
+    pub(crate) w: usize,
+    pub(crate) h: usize,
+    pub(crate) px: Vec<u8>,
 }
 
-fn read_image(path: &Path) -> Result<Grey, LoadError> {
+pub(crate) fn read_image(path: &Path) -> Result<Grey, LoadError> {
     let bytes = std::fs::read(path)
         .map_err(|source| LoadError::Io { file: path.display().to_string(), source })?;
     if bytes.starts_with(b"\x89PNG") {

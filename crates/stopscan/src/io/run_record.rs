@@ -4,9 +4,13 @@
 use serde::{Deserialize, Serialize};
 
 use crate::kernel::Point;
+use crate::offline::grid::GridBounds;
 use crate::offline::polygon::{References, upper_bound};
 use crate::protocol::CostModel;
+use crate::protocol::grid::Cell;
+use crate::sim::grid::Mission;
 use crate::sim::polygon::PolygonRun;
+use crate::world::grid::{Drift, GridWorld};
 use crate::world::polygon::PolygonWorld;
 
 /// `"environment"`.
@@ -204,6 +208,214 @@ impl RunRecord {
                     .map(|g| g.viewpoints.len()),
                 optimum,
             },
+            seed,
+            stopscan_version: crate::VERSION.into(),
+        }
+    }
+}
+
+/// `"environment"` of a grid run.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct GridEnvironmentInfo {
+    /// Name (file stem or generator).
+    pub name: String,
+    /// C, the region's cells (its outer approximation for a shape).
+    pub cells: usize,
+    /// The side of a cell, metres.
+    pub cell_size: f64,
+    /// The smallest and largest (row, col).
+    pub bounds: [Cell; 2],
+    /// The start cell.
+    pub start: Cell,
+    /// How the region moves.
+    pub drift: Drift,
+    /// The true area, m² (the shape's, or the cells').
+    pub true_area: f64,
+}
+
+/// One robot of a grid run.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct GridRobotRecord {
+    /// Robot id.
+    pub id: usize,
+    /// Cell centres flown through, metres, in the region's frame (cell `[r, c]` is at
+    /// `(c·s, −r·s)`); empty when paths were not recorded.
+    pub path: Vec<Point>,
+    /// The cells (row, col) in the order visited.
+    pub cells: Vec<Cell>,
+    /// When each cell of `cells` was reached, seconds.
+    pub times: Vec<f64>,
+    /// Its scans.
+    pub scans: Vec<ScanRecord>,
+    /// When it finished (back at the start), seconds.
+    pub finish_time: f64,
+    /// Batteries swapped.
+    pub battery_swaps: u32,
+}
+
+/// `"metrics"` of a grid run.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct GridMetrics {
+    /// Scans (all robots).
+    pub scans: u64,
+    /// Moves (all robots).
+    pub moves: u64,
+    /// Metres flown in the fixed frame (all robots).
+    pub distance: f64,
+    /// The exploration time: when the last robot is back (Problem 1), seconds.
+    pub time: f64,
+    /// `scan_time · scans` (all robots).
+    pub scan_time_total: f64,
+    /// `move_time · moves` (all robots).
+    pub move_time_total: f64,
+    /// Seconds of flight (all robots).
+    pub travel_time_total: f64,
+    /// Region cells some robot stood on.
+    pub visited_cells: usize,
+    /// `visited_cells / cells`.
+    pub coverage: f64,
+    /// Whether every robot ended on the start cell.
+    pub all_home: bool,
+    /// Cells the map marks as region (when a map was built).
+    pub mapped_cells: Option<usize>,
+    /// Intersection over union of the mapped cells against the true region (section 7's
+    /// figure; when a map was built).
+    pub iou: Option<f64>,
+    /// C_out and C_in of section 5 (for a region given as a shape).
+    pub c_out: Option<usize>,
+    /// Cells of the outer approximation lying wholly inside the shape.
+    pub c_in: Option<usize>,
+}
+
+/// `"bounds"` of a grid run: the paper's bounds beside its time.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct GridBoundsRecord {
+    /// All the bounds.
+    #[serde(flatten)]
+    pub bounds: GridBounds,
+    /// Whether the time is within Lemma 1 (null when scans or moves cost time, which the
+    /// paper's model does not have, or when batteries were swapped).
+    pub within_lemma1: Option<bool>,
+    /// The time over Lemma 2's lower bound on the optimum: an upper estimate of the
+    /// competitive ratio (the optimum is at least that bound).
+    pub competitive_ratio: Option<f64>,
+}
+
+/// A whole grid run record (DESIGN.md's fields, plus `cells`).
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct GridRunRecord {
+    /// `"stopscan-run/1"`.
+    pub format: String,
+    /// The region.
+    pub environment: GridEnvironmentInfo,
+    /// The strategy and its parameters.
+    pub strategy: StrategyInfo,
+    /// The cost model (its speed is S_r).
+    pub cost_model: CostModel,
+    /// The sensor.
+    pub sensor: serde_json::Value,
+    /// One record per robot.
+    pub robots: Vec<GridRobotRecord>,
+    /// The metrics.
+    pub metrics: GridMetrics,
+    /// Bounds.
+    pub bounds: GridBoundsRecord,
+    /// C.
+    pub cells: usize,
+    /// Why robots gave up, if any did.
+    pub failures: Vec<String>,
+    /// The seed.
+    pub seed: u64,
+    /// The library version.
+    pub stopscan_version: String,
+}
+
+impl GridRunRecord {
+    /// The record of a finished (or stopped) mission in `world`.
+    pub fn new(world: &GridWorld, mission: &Mission, seed: u64) -> Self {
+        let roi = world.roi();
+        let cost = mission.plan.cost;
+        let tm = world.time_model(&cost);
+        let s = roi.cell_size();
+        let centre = |c: Cell| [f64::from(c[1]) * s, -f64::from(c[0]) * s];
+        let home = mission.plan.search.map_or(roi.start(), |x| x.launch);
+        let swaps = mission.swaps();
+        let robots: Vec<GridRobotRecord> = mission
+            .team
+            .robots
+            .iter()
+            .enumerate()
+            .map(|(i, r)| GridRobotRecord {
+                id: i,
+                path: r.path.iter().map(|&c| centre(c)).collect(),
+                cells: r.path.clone(),
+                times: crate::sim::grid::arrival_times(r, &tm, &cost),
+                scans: r
+                    .scan_places
+                    .iter()
+                    .zip(&r.scan_times)
+                    .map(|(&c, &t)| ScanRecord { at: centre(c), time: t })
+                    .collect(),
+                finish_time: r.clock,
+                battery_swaps: swaps.get(i).copied().unwrap_or(0),
+            })
+            .collect();
+        let tally = mission.team.tally();
+        let time = mission.team.makespan();
+        let visited = world.visited().len();
+        let mapped = mission.plan.map.then(|| mission.marks.positive());
+        let counts = roi.approximation_counts();
+        let d_max = crate::offline::grid::tree_depth(&world.records());
+        let bounds = GridBounds::new(roi.len(), roi.bounds(), d_max, mission.plan.robots, tm);
+        let paper_model = cost.scan_time == 0.0
+            && cost.move_time == 0.0
+            && swaps.iter().all(|&w| w == 0)
+            && mission.plan.search.is_none();
+        Self {
+            format: "stopscan-run/1".into(),
+            environment: GridEnvironmentInfo {
+                name: roi.name().into(),
+                cells: roi.len(),
+                cell_size: s,
+                bounds: roi.bounds(),
+                start: roi.start(),
+                drift: world.drift(),
+                true_area: roi.true_area(),
+            },
+            strategy: StrategyInfo {
+                name: "recursive_dfs".into(),
+                params: serde_json::json!({
+                    "robots": mission.plan.robots,
+                    "battery_s": mission.plan.battery_s,
+                    "search": mission.plan.search,
+                }),
+            },
+            cost_model: cost,
+            sensor: serde_json::to_value(world.sensor()).unwrap_or_default(),
+            robots,
+            metrics: GridMetrics {
+                scans: tally.scans,
+                moves: tally.moves,
+                distance: tally.distance,
+                time,
+                scan_time_total: cost.scan_time * tally.scans as f64,
+                move_time_total: cost.move_time * tally.moves as f64,
+                travel_time_total: tally.distance / cost.speed,
+                visited_cells: visited,
+                coverage: visited as f64 / roi.len() as f64,
+                all_home: mission.team.robots.iter().all(|r| r.done && r.at == home),
+                mapped_cells: mapped.as_ref().map(Vec::len),
+                iou: mapped.as_ref().map(|m| roi.iou(m)),
+                c_out: counts.map(|c| c.0),
+                c_in: counts.map(|c| c.1),
+            },
+            bounds: GridBoundsRecord {
+                within_lemma1: paper_model.then_some(time <= bounds.lemma1_upper * (1.0 + 1e-12)),
+                competitive_ratio: (bounds.lemma2_lower > 0.0).then(|| time / bounds.lemma2_lower),
+                bounds,
+            },
+            cells: roi.len(),
+            failures: mission.failures(),
             seed,
             stopscan_version: crate::VERSION.into(),
         }

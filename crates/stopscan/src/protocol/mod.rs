@@ -5,6 +5,7 @@
 //! speak the same protocol as the simulator.
 
 pub mod corner;
+pub mod grid;
 pub mod polygon;
 
 use serde::{Deserialize, Serialize};
@@ -125,6 +126,19 @@ pub enum Action<P> {
     Scan,
     /// The task is complete (or cannot progress); the driver stops.
     Done,
+}
+
+/// What the driver tells a strategy before asking for its next action. `P` is the family's
+/// place, `O` its observation.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(tag = "event", rename_all = "snake_case")]
+pub enum Feedback<P, O> {
+    /// The run begins at this place.
+    Start(P),
+    /// The robot reached the place it asked for.
+    Arrived,
+    /// The scan it asked for.
+    Scanned(O),
 }
 
 #[cfg(test)]

@@ -11,7 +11,9 @@ use serde::{Deserialize, Serialize};
 
 use crate::strategy::corner::mdp::Cell;
 
+mod roi;
 mod scene;
+pub use roi::roi_svg;
 pub use scene::{exploration_svg, scene_svg};
 
 /// Why a picture could not be written.

@@ -63,7 +63,7 @@ pub fn run(
                 tally.distance += metres;
                 at = reached;
                 feedback = Feedback::Arrived;
-                if observer.on_move(&Stop { angle: at, route: to.route }, metres).is_break() {
+                if observer.on_move(0, &Stop { angle: at, route: to.route }, metres).is_break() {
                     interrupted = true;
                     break;
                 }
@@ -74,7 +74,10 @@ pub fn run(
                 scans.push(at);
                 seen = matches!(obs, CornerObservation::Seen { .. });
                 feedback = Feedback::Scanned(obs);
-                if observer.on_scan(&Stop { angle: at, route: Route::default() }, &obs).is_break() {
+                if observer
+                    .on_scan(0, &Stop { angle: at, route: Route::default() }, &obs)
+                    .is_break()
+                {
                     interrupted = true;
                     break;
                 }

@@ -2,20 +2,25 @@
 //! [`CostModel`](crate::protocol::CostModel) and pushes events to observers, which listen.
 
 pub mod corner;
+pub mod grid;
 pub mod polygon;
+mod team;
+
+pub use team::{Agent, Arena, Flow, Leg, Member, Recording, SimError, Spot, Team, Track};
 
 use std::ops::ControlFlow;
 
 /// Listens to a run. Every hook has a no-op default; returning `Break` stops the run.
 ///
-/// `P` is the family's place type, `O` its observation type.
+/// `P` is the family's place type, `O` its observation type; `robot` is the robot's index in
+/// the team (always 0 for one robot).
 pub trait Observer<P, O> {
-    /// The robot drove to `to`, covering `metres`.
-    fn on_move(&mut self, _to: &P, _metres: f64) -> ControlFlow<()> {
+    /// Robot `robot` drove to `to`, covering `metres`.
+    fn on_move(&mut self, _robot: usize, _to: &P, _metres: f64) -> ControlFlow<()> {
         ControlFlow::Continue(())
     }
-    /// The robot scanned at `at` and observed `observation`.
-    fn on_scan(&mut self, _at: &P, _observation: &O) -> ControlFlow<()> {
+    /// Robot `robot` scanned at `at` and observed `observation`.
+    fn on_scan(&mut self, _robot: usize, _at: &P, _observation: &O) -> ControlFlow<()> {
         ControlFlow::Continue(())
     }
     /// The run ended.
@@ -33,19 +38,19 @@ impl<P, O> Observer<P, O> for NoObserver {}
 pub struct Fanout<'a, P, O>(pub Vec<&'a mut dyn Observer<P, O>>);
 
 impl<P, O> Observer<P, O> for Fanout<'_, P, O> {
-    fn on_move(&mut self, to: &P, metres: f64) -> ControlFlow<()> {
+    fn on_move(&mut self, robot: usize, to: &P, metres: f64) -> ControlFlow<()> {
         let mut flow = ControlFlow::Continue(());
         for o in &mut self.0 {
-            if o.on_move(to, metres).is_break() {
+            if o.on_move(robot, to, metres).is_break() {
                 flow = ControlFlow::Break(());
             }
         }
         flow
     }
-    fn on_scan(&mut self, at: &P, observation: &O) -> ControlFlow<()> {
+    fn on_scan(&mut self, robot: usize, at: &P, observation: &O) -> ControlFlow<()> {
         let mut flow = ControlFlow::Continue(());
         for o in &mut self.0 {
-            if o.on_scan(at, observation).is_break() {
+            if o.on_scan(robot, at, observation).is_break() {
                 flow = ControlFlow::Break(());
             }
         }
@@ -59,9 +64,9 @@ impl<P, O> Observer<P, O> for Fanout<'_, P, O> {
 }
 
 /// The trace recorder: one JSON object per line and per event, written (and flushed) as it
-/// happens, so a trace survives a crash up to its last event: `{"event":"move","to":[x,y],
-/// "metres":m}`, `{"event":"scan","at":[x,y],"observation":{..}}`, `{"event":"finish",
-/// "tally":{..}}`. A write error stops the run and is kept in [`JsonLinesTrace::error`].
+/// happens, so a trace survives a crash up to its last event: `{"event":"move","robot":0,
+/// "to":[x,y],"metres":m}`, `{"event":"scan","robot":0,"at":[x,y],"observation":{..}}`,
+/// `{"event":"finish","tally":{..}}`. A write error stops the run and is kept in [`JsonLinesTrace::error`].
 pub struct JsonLinesTrace<W: std::io::Write> {
     out: W,
     /// The first write error, if any.
@@ -92,11 +97,12 @@ impl<W: std::io::Write> JsonLinesTrace<W> {
 impl<P: serde::Serialize, O: serde::Serialize, W: std::io::Write> Observer<P, O>
     for JsonLinesTrace<W>
 {
-    fn on_move(&mut self, to: &P, metres: f64) -> ControlFlow<()> {
-        self.line(&serde_json::json!({"event": "move", "to": to, "metres": metres}))
+    fn on_move(&mut self, robot: usize, to: &P, metres: f64) -> ControlFlow<()> {
+        self.line(&serde_json::json!({"event": "move", "robot": robot, "to": to, "metres": metres}))
     }
-    fn on_scan(&mut self, at: &P, observation: &O) -> ControlFlow<()> {
-        self.line(&serde_json::json!({"event": "scan", "at": at, "observation": observation}))
+    fn on_scan(&mut self, robot: usize, at: &P, observation: &O) -> ControlFlow<()> {
+        let v = serde_json::json!({"event": "scan", "robot": robot, "at": at, "observation": observation});
+        self.line(&v)
     }
     fn on_finish(&mut self, tally: &crate::protocol::Tally) {
         let _ = self.line(&serde_json::json!({"event": "finish", "tally": tally}));

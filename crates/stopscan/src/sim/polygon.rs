@@ -1,8 +1,8 @@
-//! Driving a polygon strategy against a polygon world.
+//! Driving a polygon strategy against a polygon world: one robot in the team loop.
 
 use serde::{Deserialize, Serialize};
 
-use super::Observer;
+use super::{Agent, Arena, Flow, Leg, Member, Observer, SimError, Team};
 use crate::kernel::Point;
 use crate::protocol::polygon::PolygonObservation;
 use crate::protocol::{Action, CostModel, Tally, TimeBreakdown};
@@ -10,26 +10,7 @@ use crate::strategy::polygon::{PolygonFeedback, PolygonStrategy};
 use crate::world::polygon::PolygonWorld;
 
 /// Why a polygon run was cut short.
-#[derive(Debug, Clone, PartialEq, thiserror::Error)]
-#[non_exhaustive]
-pub enum PolygonSimError {
-    /// The strategy asked for a straight move that leaves the free space; the simulator
-    /// refuses it.
-    #[error(
-        "strategy {strategy} asked to move from {from:?} to {to:?}, which leaves the free space"
-    )]
-    Blocked {
-        /// The strategy.
-        strategy: String,
-        /// Where the robot was.
-        from: Point,
-        /// Where it wanted to go.
-        to: Point,
-    },
-    /// The strategy did not finish within the action limit.
-    #[error("strategy {0} did not finish within {1} actions")]
-    TooLong(String, usize),
-}
+pub type PolygonSimError = SimError<Point>;
 
 /// The record of one exploration run.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
@@ -48,6 +29,39 @@ pub struct PolygonRun {
     pub interrupted: bool,
 }
 
+/// A polygon world as the loop sees it: straight moves checked exactly, no communication.
+struct PolygonArena<'a>(&'a PolygonWorld);
+
+impl Arena for PolygonArena<'_> {
+    type Place = Point;
+    type Observation = PolygonObservation;
+    type Context = ();
+    type Note = ();
+
+    fn travel(&self, from: &Point, to: &Point, _clock: f64, cost: &CostModel) -> Option<Leg> {
+        self.0.can_move(*from, *to).then(|| {
+            let metres = (to[0] - from[0]).hypot(to[1] - from[1]);
+            Leg { metres, seconds: metres / cost.speed }
+        })
+    }
+    fn scan(&mut self, _robot: usize, at: &Point, _clock: f64) -> Option<PolygonObservation> {
+        self.0.scan(*at).ok()
+    }
+    fn meet(&mut self, _at: &Point, _clock: f64, _members: &[Member<Point>]) {}
+    fn leave(&mut self, _at: &Point, (): ()) {}
+}
+
+struct Driven<'a>(&'a mut dyn PolygonStrategy);
+
+impl Agent<PolygonArena<'_>> for Driven<'_> {
+    fn name(&self) -> &str {
+        self.0.name()
+    }
+    fn act(&mut self, feedback: &PolygonFeedback, (): &()) -> Action<Point> {
+        self.0.act(feedback)
+    }
+}
+
 /// Runs `strategy` in `world` from `start` until it is done.
 ///
 /// # Errors
@@ -59,67 +73,17 @@ pub fn run(
     strategy: &mut dyn PolygonStrategy,
     observer: &mut dyn Observer<Point, PolygonObservation>,
 ) -> Result<PolygonRun, PolygonSimError> {
-    const LIMIT: usize = 1_000_000;
-    let mut tally = Tally::default();
-    let mut at = start;
-    let mut path = vec![start];
-    let mut scans = Vec::new();
-    let mut scan_times = Vec::new();
-    let mut elapsed = 0.0;
-    let mut feedback = PolygonFeedback::Start(start);
-    for _ in 0..LIMIT {
-        match strategy.act(&feedback) {
-            Action::MoveTo { to } => {
-                if !world.can_move(at, to) {
-                    return Err(PolygonSimError::Blocked {
-                        strategy: strategy.name().into(),
-                        from: at,
-                        to,
-                    });
-                }
-                let metres = (to[0] - at[0]).hypot(to[1] - at[1]);
-                tally.moves += 1;
-                tally.distance += metres;
-                elapsed += cost.move_time + metres / cost.speed;
-                at = to;
-                path.push(to);
-                feedback = PolygonFeedback::Arrived;
-                if observer.on_move(&to, metres).is_break() {
-                    return Ok(finish(observer, cost, tally, path, (scans, scan_times), true));
-                }
-            }
-            Action::Scan => {
-                let obs = world.scan(at).map_err(|_| PolygonSimError::Blocked {
-                    strategy: strategy.name().into(),
-                    from: at,
-                    to: at,
-                })?;
-                tally.scans += 1;
-                scan_times.push(elapsed);
-                elapsed += cost.scan_time;
-                let stop = observer.on_scan(&at, &obs).is_break();
-                scans.push(obs.clone());
-                feedback = PolygonFeedback::Scanned(obs);
-                if stop {
-                    return Ok(finish(observer, cost, tally, path, (scans, scan_times), true));
-                }
-            }
-            Action::Done => {
-                return Ok(finish(observer, cost, tally, path, (scans, scan_times), false));
-            }
-        }
-    }
-    Err(PolygonSimError::TooLong(strategy.name().into(), LIMIT))
-}
-
-fn finish(
-    observer: &mut dyn Observer<Point, PolygonObservation>,
-    cost: &CostModel,
-    tally: Tally,
-    path: Vec<Point>,
-    (scans, scan_times): (Vec<PolygonObservation>, Vec<f64>),
-    interrupted: bool,
-) -> PolygonRun {
-    observer.on_finish(&tally);
-    PolygonRun { tally, time: cost.price(&tally), path, scans, scan_times, interrupted }
+    const LIMIT: u64 = 1_000_000;
+    let mut team = Team::new(vec![start], super::Recording::ALL);
+    let mut agents = [Driven(strategy)];
+    let flow = team.run(&mut PolygonArena(world), cost, &mut agents, observer, LIMIT)?;
+    let r = team.robots.swap_remove(0);
+    Ok(PolygonRun {
+        tally: r.tally,
+        time: cost.price(&r.tally),
+        path: r.path,
+        scans: r.observations,
+        scan_times: r.scan_times,
+        interrupted: flow == Flow::Interrupted,
+    })
 }

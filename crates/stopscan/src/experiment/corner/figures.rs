@@ -87,6 +87,7 @@ pub(super) fn corner_policy_figure(id: &str) -> Result<Reproduction, ExperimentE
         notes,
         charts: vec![],
         images,
+        tables: vec![],
     })
 }
 
@@ -146,6 +147,7 @@ pub(super) fn corner_fig_7() -> Result<Reproduction, ExperimentError> {
         notes: vec![format!("POLICY2 ≤ POLICY1 at {p2_wins} of {} reconstruction times (the paper: POLICY2 outperforms POLICY1 as scans get costly)", taus.len())],
         charts: vec![("corner-fig-7".into(), chart)],
         images: vec![],
+        tables: vec![],
     })
 }
 
@@ -210,6 +212,7 @@ pub(super) fn corner_fig_8() -> Result<Reproduction, ExperimentError> {
         notes,
         charts,
         images: vec![],
+        tables: vec![],
     })
 }
 
@@ -238,6 +241,7 @@ pub(super) fn circle_table_1() -> Reproduction {
         notes: vec!["the paper rounds to six digits; every row agrees to all printed digits".into()],
         charts: vec![],
         images: vec![],
+        tables: vec![],
     }
 }
 
@@ -332,5 +336,6 @@ pub(super) fn circle_fig_7(seed: u64) -> Reproduction {
         ],
         charts,
         images: vec![],
+        tables: vec![],
     }
 }

@@ -200,7 +200,15 @@ pub(super) fn corner_table(
             }
         }
     }
-    Ok(Reproduction { id: id.into(), model, rows, notes, charts: vec![], images: vec![] })
+    Ok(Reproduction {
+        id: id.into(),
+        model,
+        rows,
+        notes,
+        charts: vec![],
+        images: vec![],
+        tables: vec![],
+    })
 }
 
 pub(super) fn corner_table_4(samples: usize, seed: u64) -> Result<Reproduction, ExperimentError> {
@@ -221,5 +229,6 @@ pub(super) fn corner_table_4(samples: usize, seed: u64) -> Result<Reproduction, 
         notes,
         charts: vec![],
         images: vec![],
+        tables: vec![],
     })
 }

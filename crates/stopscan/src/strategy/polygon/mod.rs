@@ -14,23 +14,12 @@ pub use known::Placement;
 pub use nearest_frontier::NearestFrontier;
 pub use range_limited::RangeLimited;
 
-use serde::{Deserialize, Serialize};
-
 use crate::kernel::Point;
 use crate::protocol::polygon::PolygonObservation;
-use crate::protocol::{Action, CostModel};
+use crate::protocol::{Action, CostModel, Feedback};
 
 /// What the driver tells a polygon strategy before asking for its next action.
-#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
-#[serde(tag = "event", rename_all = "snake_case")]
-pub enum PolygonFeedback {
-    /// The run begins at the start point.
-    Start(Point),
-    /// The robot reached the point it asked for.
-    Arrived,
-    /// The scan it asked for.
-    Scanned(PolygonObservation),
-}
+pub type PolygonFeedback = Feedback<Point, PolygonObservation>;
 
 /// `(name, summary)` of every polygon strategy, in display order.
 pub const REGISTRY: &[(&str, &str)] = &[

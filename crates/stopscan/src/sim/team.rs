@@ -1,0 +1,408 @@
+//! The one stop-scan-plan-go loop, for a team of any size in any world family.
+//!
+//! Every robot has its own clock. A [`Team::step`] takes the robots whose clock is earliest and
+//! who stand on the same place (a *group*: robots that arrived together), lets each tell the
+//! others its news ([`Agent::report`]), tells the world they meet there ([`Arena::meet`]; this
+//! is the only way robots learn from each other), asks each
+//! one for its next action in index order, carries the actions out, and finally lets each leave
+//! its note at the place ([`Arena::leave`]). The loop state is plain data (serde), so a mission
+//! can be written after every step and resumed after a crash or a battery swap.
+
+use std::fmt::Debug;
+
+use serde::{Deserialize, Serialize};
+
+use super::Observer;
+use crate::protocol::{Action, CostModel, Feedback, Tally};
+
+/// A straight move, as a world prices it.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Leg {
+    /// Metres flown or driven (in the world's fixed frame).
+    pub metres: f64,
+    /// Seconds of travel (without the cost model's per-move time).
+    pub seconds: f64,
+}
+
+/// One robot of a group that meets at a place.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Member<P> {
+    /// The robot's index in the team.
+    pub robot: usize,
+    /// Where it stood before, if it moved here.
+    pub came_from: Option<P>,
+}
+
+/// What the loop needs from a world: moves, scans, and where robots meet.
+pub trait Arena {
+    /// A place a robot can stand on.
+    type Place: Clone + PartialEq + Debug;
+    /// What a scan returns.
+    type Observation: Clone;
+    /// What robots learn where they stand (from one another, or left there before).
+    type Context;
+    /// What a robot leaves where it stands (robots of a group often leave equal notes; the
+    /// loop passes each distinct note once).
+    type Note: PartialEq;
+
+    /// Checks a straight move that begins at time `clock` and prices it, or refuses it.
+    fn travel(
+        &self,
+        from: &Self::Place,
+        to: &Self::Place,
+        clock: f64,
+        cost: &CostModel,
+    ) -> Option<Leg>;
+    /// The sensor of robot `robot` at `at`, or `None` if it cannot scan there.
+    fn scan(&mut self, robot: usize, at: &Self::Place, clock: f64) -> Option<Self::Observation>;
+    /// `members` stand together at `at` at time `clock`.
+    fn meet(
+        &mut self,
+        at: &Self::Place,
+        clock: f64,
+        members: &[Member<Self::Place>],
+    ) -> Self::Context;
+    /// A robot leaves `note` at `at`.
+    fn leave(&mut self, at: &Self::Place, note: Self::Note);
+}
+
+/// A strategy as the loop drives it.
+pub trait Agent<W: Arena + ?Sized> {
+    /// The registry name.
+    fn name(&self) -> &str;
+    /// The next action, given the feedback of the last one and what the robot learns here.
+    fn act(
+        &mut self,
+        feedback: &Feedback<W::Place, W::Observation>,
+        context: &W::Context,
+    ) -> Action<W::Place>;
+    /// What the robot leaves where it stands after acting (nothing by default).
+    fn note(&mut self) -> Option<W::Note> {
+        None
+    }
+    /// What the robot tells the robots it meets as it arrives, before anyone acts (nothing by
+    /// default): news from where it comes from.
+    fn report(&mut self, _feedback: &Feedback<W::Place, W::Observation>) -> Option<W::Note> {
+        None
+    }
+}
+
+/// Why a run was cut short.
+#[derive(Debug, Clone, PartialEq, thiserror::Error)]
+#[non_exhaustive]
+pub enum SimError<P: Debug> {
+    /// A strategy asked for a move the world refuses (it leaves the free space) or for a scan
+    /// where it cannot scan.
+    #[error(
+        "strategy {strategy} (robot {robot}) asked to move from {from:?} to {to:?}, which the world refuses"
+    )]
+    Blocked {
+        /// The strategy.
+        strategy: String,
+        /// The robot.
+        robot: usize,
+        /// Where the robot was.
+        from: P,
+        /// Where it wanted to go (`from` for a scan).
+        to: P,
+    },
+    /// The team did not finish within the step limit.
+    #[error("strategy {0} did not finish within {1} steps")]
+    TooLong(String, u64),
+}
+
+/// One robot's state in the loop and what it has done so far.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct Track<P, O> {
+    /// Its clock: seconds since the start.
+    pub clock: f64,
+    /// Where it stands.
+    pub at: P,
+    /// Where it stood before its last move.
+    pub came_from: Option<P>,
+    /// The feedback it gets next.
+    pub feedback: Feedback<P, O>,
+    /// Whether it has answered done.
+    pub done: bool,
+    /// Its scans, moves and metres.
+    pub tally: Tally,
+    /// The places it stood on, in order (starts at its start), when the team records paths.
+    pub path: Vec<P>,
+    /// When each of its scans began.
+    pub scan_times: Vec<f64>,
+    /// Where each of its scans was taken, when the team records paths.
+    pub scan_places: Vec<P>,
+    /// What each of its scans returned (kept when the team records observations).
+    pub observations: Vec<O>,
+}
+
+/// What a team's tracks keep besides tallies and clocks.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
+pub struct Recording {
+    /// Every place each robot stood on.
+    pub paths: bool,
+    /// Every observation.
+    pub observations: bool,
+}
+
+impl Recording {
+    /// Paths and observations.
+    pub const ALL: Self = Self { paths: true, observations: true };
+    /// Paths only.
+    pub const PATHS: Self = Self { paths: true, observations: false };
+    /// Neither (the fastest: a benchmark, or a sweep that needs only times).
+    pub const NONE: Self = Self { paths: false, observations: false };
+}
+
+/// How a step ended.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Flow {
+    /// More to do.
+    Continue,
+    /// Every robot is done.
+    Finished,
+    /// An observer stopped the run.
+    Interrupted,
+}
+
+/// The loop's state: every robot's track.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct Team<P, O> {
+    /// The robots, by index.
+    pub robots: Vec<Track<P, O>>,
+    /// Steps taken so far.
+    pub steps: u64,
+    /// What the tracks keep.
+    pub recording: Recording,
+    /// The robots not done, by (clock, index); rebuilt from the tracks after loading.
+    /// Every robot's (clock, place) as ordered keys, `u64::MAX` once done: a compact copy of
+    /// the tracks that the loop scans to find the next group. Rebuilt after loading.
+    #[serde(skip)]
+    keys: Vec<(u64, u64)>,
+}
+
+/// A clock as an ordered key: non-negative floats order as their bits do.
+fn key(clock: f64) -> u64 {
+    clock.max(0.0).to_bits()
+}
+
+/// A place as a number, so that robots standing together sort together in the loop's queue
+/// (equal places give equal numbers; unequal places rarely do, and are told apart anyway).
+pub trait Spot {
+    /// The number.
+    fn spot(&self) -> u64;
+}
+
+impl Spot for [f64; 2] {
+    fn spot(&self) -> u64 {
+        self[0].to_bits().rotate_left(32) ^ self[1].to_bits()
+    }
+}
+
+impl Spot for [i32; 2] {
+    fn spot(&self) -> u64 {
+        (u64::from(self[0] as u32) << 32) | u64::from(self[1] as u32)
+    }
+}
+
+impl<P: Clone + PartialEq + Debug + Spot, O: Clone> Team<P, O> {
+    /// A team whose robot `i` starts at `starts[i]` at time 0.
+    pub fn new(starts: Vec<P>, recording: Recording) -> Self {
+        let robots = starts
+            .into_iter()
+            .map(|s| Track {
+                clock: 0.0,
+                at: s.clone(),
+                came_from: None,
+                feedback: Feedback::Start(s.clone()),
+                done: false,
+                tally: Tally::default(),
+                path: vec![s],
+                scan_times: Vec::new(),
+                scan_places: Vec::new(),
+                observations: Vec::new(),
+            })
+            .collect();
+        Self { robots, steps: 0, recording, keys: Vec::new() }
+    }
+
+    /// The time the last robot finished (the makespan), or the latest clock so far.
+    pub fn makespan(&self) -> f64 {
+        self.robots.iter().map(|r| r.clock).fold(0.0, f64::max)
+    }
+
+    /// The team's scans, moves and metres together.
+    pub fn tally(&self) -> Tally {
+        self.robots.iter().fold(Tally::default(), |mut t, r| {
+            t.scans += r.tally.scans;
+            t.moves += r.tally.moves;
+            t.distance += r.tally.distance;
+            t
+        })
+    }
+
+    /// Whether every robot is done.
+    pub fn finished(&self) -> bool {
+        self.robots.iter().all(|r| r.done)
+    }
+
+    /// The robots that act next: the robot with the earliest clock (the lowest index among
+    /// equals) and every robot standing with it at that time.
+    fn next_group(&mut self) -> Option<Vec<usize>> {
+        if self.keys.len() != self.robots.len() {
+            self.keys = self.robots.iter().map(Self::key_of).collect();
+        }
+        let first = (0..self.keys.len()).min_by_key(|&i| (self.keys[i].0, i))?;
+        let k = self.keys[first];
+        if k.0 == u64::MAX {
+            return None;
+        }
+        let at = &self.robots[first].at;
+        Some(
+            (first..self.keys.len())
+                .filter(|&i| self.keys[i] == k && self.robots[i].at == *at)
+                .collect(),
+        )
+    }
+
+    fn key_of(r: &Track<P, O>) -> (u64, u64) {
+        if r.done { (u64::MAX, u64::MAX) } else { (key(r.clock), r.at.spot()) }
+    }
+
+    /// Runs one group of robots one action each (see the module documentation).
+    ///
+    /// # Errors
+    /// [`SimError::Blocked`] if a strategy asks for a move or a scan the world refuses.
+    pub fn step<W, A>(
+        &mut self,
+        world: &mut W,
+        cost: &CostModel,
+        agents: &mut [A],
+        observer: &mut dyn Observer<P, O>,
+    ) -> Result<Flow, SimError<P>>
+    where
+        W: Arena<Place = P, Observation = O>,
+        A: Agent<W>,
+    {
+        let Some(group) = self.next_group() else {
+            return Ok(Flow::Finished);
+        };
+        self.steps += 1;
+        let (clock, at) = (self.robots[group[0]].clock, self.robots[group[0]].at.clone());
+        let members: Vec<Member<P>> = group
+            .iter()
+            .map(|&i| Member { robot: i, came_from: self.robots[i].came_from.clone() })
+            .collect();
+        let mut notes: Vec<W::Note> = Vec::new();
+        for &i in &group {
+            if let Some(n) = agents[i].report(&self.robots[i].feedback)
+                && notes.last() != Some(&n)
+            {
+                notes.push(n);
+            }
+        }
+        for n in notes.drain(..) {
+            world.leave(&at, n);
+        }
+        let context = world.meet(&at, clock, &members);
+        let mut stop = false;
+        for &i in &group {
+            let agent = &mut agents[i];
+            let action = agent.act(&self.robots[i].feedback, &context);
+            if let Some(n) = agent.note()
+                && notes.last() != Some(&n)
+            {
+                notes.push(n);
+            }
+            let r = &mut self.robots[i];
+            match action {
+                Action::MoveTo { to } => {
+                    let Some(leg) = world.travel(&r.at, &to, r.clock, cost) else {
+                        return Err(SimError::Blocked {
+                            strategy: agent.name().into(),
+                            robot: i,
+                            from: r.at.clone(),
+                            to,
+                        });
+                    };
+                    r.tally.moves += 1;
+                    r.tally.distance += leg.metres;
+                    r.clock += cost.move_time + leg.seconds;
+                    r.came_from = Some(std::mem::replace(&mut r.at, to.clone()));
+                    if self.recording.paths {
+                        r.path.push(to.clone());
+                    }
+                    r.feedback = Feedback::Arrived;
+                    stop |= observer.on_move(i, &to, leg.metres).is_break();
+                }
+                Action::Scan => {
+                    let Some(obs) = world.scan(i, &r.at, r.clock) else {
+                        return Err(SimError::Blocked {
+                            strategy: agent.name().into(),
+                            robot: i,
+                            from: r.at.clone(),
+                            to: r.at.clone(),
+                        });
+                    };
+                    r.tally.scans += 1;
+                    r.scan_times.push(r.clock);
+                    if self.recording.paths {
+                        r.scan_places.push(r.at.clone());
+                    }
+                    r.clock += cost.scan_time;
+                    stop |= observer.on_scan(i, &r.at, &obs).is_break();
+                    if self.recording.observations {
+                        r.observations.push(obs.clone());
+                    }
+                    r.feedback = Feedback::Scanned(obs);
+                }
+                Action::Done => r.done = true,
+            }
+        }
+        for n in notes {
+            world.leave(&at, n);
+        }
+        for &i in &group {
+            self.keys[i] = Self::key_of(&self.robots[i]);
+        }
+        if stop {
+            observer.on_finish(&self.tally());
+            return Ok(Flow::Interrupted);
+        }
+        // Done robots have the largest key; the team is finished when the next one is done.
+        if group.iter().any(|&i| self.robots[i].done) && self.finished() {
+            observer.on_finish(&self.tally());
+            return Ok(Flow::Finished);
+        }
+        Ok(Flow::Continue)
+    }
+
+    /// Steps until every robot is done, an observer stops the run, or `limit` steps in all
+    /// have been taken.
+    ///
+    /// # Errors
+    /// [`SimError::Blocked`] as in [`Team::step`]; [`SimError::TooLong`] past the limit.
+    pub fn run<W, A>(
+        &mut self,
+        world: &mut W,
+        cost: &CostModel,
+        agents: &mut [A],
+        observer: &mut dyn Observer<P, O>,
+        limit: u64,
+    ) -> Result<Flow, SimError<P>>
+    where
+        W: Arena<Place = P, Observation = O>,
+        A: Agent<W>,
+    {
+        loop {
+            if self.steps >= limit {
+                let name = agents.first().map_or_else(String::new, |a| a.name().to_string());
+                return Err(SimError::TooLong(name, limit));
+            }
+            match self.step(world, cost, agents, observer)? {
+                Flow::Continue => {}
+                f => return Ok(f),
+            }
+        }
+    }
+}

@@ -1,0 +1,205 @@
+//! The field experiment's first mode: sweep a bounding box that is known to contain part of
+//! the region, lawn-mower fashion, until the region is first seen; then the inner strategy
+//! (Algorithm 1) starts from the first region cell, and when it is done the robot flies back to
+//! where it was launched.
+
+use serde::{Deserialize, Serialize};
+
+use super::{GridFeedback, GridStrategy};
+use crate::protocol::Action;
+use crate::protocol::grid::{Cell, GridContext, Record, neighbour};
+
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "snake_case")]
+enum Phase {
+    /// Sweeping; the index of the next lawn cell.
+    Search(usize),
+    /// Flying to the first region cell seen from the sweep.
+    Entering,
+    /// The inner strategy runs.
+    Inner,
+    /// Flying back to the launch cell.
+    Homing,
+    /// Finished.
+    Done,
+}
+
+/// A lawn-mowing search around an inner strategy. With no box, it passes everything through.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct LawnMower<S> {
+    inner: S,
+    /// A fresh inner strategy, for a new start after a false alarm.
+    fresh: Option<S>,
+    lawn: Vec<Cell>,
+    /// The next lawn cell when the search goes on.
+    resume_at: usize,
+    /// Whether the region was confirmed below the robot since the inner strategy started.
+    confirmed: bool,
+    phase: Phase,
+    launch: Option<Cell>,
+    entry: Option<Cell>,
+    /// Whether the sweep ended without seeing the region.
+    pub not_found: bool,
+}
+
+impl<S> LawnMower<S> {
+    /// No search: the robot starts on the region.
+    pub fn none(inner: S) -> Self {
+        Self {
+            inner,
+            fresh: None,
+            lawn: Vec::new(),
+            resume_at: 0,
+            confirmed: true,
+            phase: Phase::Inner,
+            launch: None,
+            entry: None,
+            not_found: false,
+        }
+    }
+
+    /// Sweep the box of cells from `min` to `max` (inclusive): lanes three cells apart
+    /// (each pass sees its own row and the rows either side), alternating in direction.
+    pub fn sweep(inner: S, min: Cell, max: Cell) -> Self
+    where
+        S: Clone,
+    {
+        let mut lawn = Vec::new();
+        let mut r = min[0] + 1;
+        let mut east = true;
+        loop {
+            let row = r.min(max[0]);
+            let cols: Vec<i32> =
+                if east { (min[1]..=max[1]).collect() } else { (min[1]..=max[1]).rev().collect() };
+            lawn.extend(cols.into_iter().map(|c| [row, c]));
+            if row >= max[0] - 1 {
+                break;
+            }
+            r += 3;
+            east = !east;
+        }
+        Self {
+            fresh: Some(inner.clone()),
+            inner,
+            lawn,
+            resume_at: 0,
+            confirmed: false,
+            phase: Phase::Search(0),
+            launch: None,
+            entry: None,
+            not_found: false,
+        }
+    }
+
+    /// The inner strategy.
+    pub fn inner(&self) -> &S {
+        &self.inner
+    }
+
+    /// Whether the robot is still searching for the region.
+    pub fn searching(&self) -> bool {
+        matches!(self.phase, Phase::Search(_) | Phase::Entering)
+    }
+
+    fn next_lawn_cell(&mut self, i: usize) -> Action<Cell> {
+        if let Some(&c) = self.lawn.get(i) {
+            self.phase = Phase::Search(i + 1);
+            Action::MoveTo { to: c }
+        } else {
+            self.not_found = true;
+            self.home()
+        }
+    }
+
+    fn after_inner(&mut self, a: Action<Cell>) -> Action<Cell> {
+        match a {
+            Action::Done
+                if self.launch.is_some() && self.launch != self.entry && !self.lawn.is_empty() =>
+            {
+                self.home()
+            }
+            Action::Done => {
+                self.phase = Phase::Done;
+                Action::Done
+            }
+            a => a,
+        }
+    }
+
+    fn home(&mut self) -> Action<Cell> {
+        self.phase = Phase::Homing;
+        match self.launch {
+            Some(l) => Action::MoveTo { to: l },
+            None => Action::Done,
+        }
+    }
+}
+
+impl<S: GridStrategy + Clone> GridStrategy for LawnMower<S> {
+    fn name(&self) -> &str {
+        self.inner.name()
+    }
+
+    fn act(&mut self, feedback: &GridFeedback, context: &GridContext) -> Action<Cell> {
+        if let GridFeedback::Start(c) = feedback {
+            self.launch.get_or_insert(*c);
+        }
+        match self.phase {
+            Phase::Search(i) => match feedback {
+                GridFeedback::Start(_) | GridFeedback::Arrived => Action::Scan,
+                GridFeedback::Scanned(obs) => {
+                    let vote = obs.vote();
+                    self.resume_at = i;
+                    if vote.centre {
+                        self.phase = Phase::Inner;
+                        self.entry = Some(obs.cell);
+                        self.confirmed = true;
+                        return self.inner.act(&GridFeedback::Start(obs.cell), context);
+                    }
+                    if let Some(side) = vote.sides.iter().position(|&s| s) {
+                        let to = neighbour(obs.cell, side);
+                        self.phase = Phase::Entering;
+                        self.entry = Some(to);
+                        self.confirmed = false;
+                        return Action::MoveTo { to };
+                    }
+                    self.next_lawn_cell(i)
+                }
+            },
+            Phase::Entering => {
+                self.phase = Phase::Inner;
+                let entry = self.entry.unwrap_or_default();
+                self.inner.act(&GridFeedback::Start(entry), context)
+            }
+            Phase::Inner => {
+                if let GridFeedback::Scanned(obs) = feedback {
+                    self.confirmed |= obs.vote().centre;
+                }
+                match self.inner.act(feedback, context) {
+                    // A false alarm: the cell entered was not region after all and nothing
+                    // around it was. Sweep on with a fresh inner strategy.
+                    Action::Done if !self.confirmed && self.fresh.is_some() => {
+                        self.inner = self.fresh.clone().unwrap_or_else(|| self.inner.clone());
+                        self.next_lawn_cell(self.resume_at)
+                    }
+                    a => self.after_inner(a),
+                }
+            }
+            Phase::Homing | Phase::Done => {
+                self.phase = Phase::Done;
+                Action::Done
+            }
+        }
+    }
+    fn report(&mut self, feedback: &GridFeedback) -> Option<Record> {
+        if self.phase == Phase::Inner { self.inner.report(feedback) } else { None }
+    }
+
+    fn note(&mut self) -> Option<Record> {
+        if matches!(self.phase, Phase::Inner) || self.phase == Phase::Homing {
+            self.inner.note()
+        } else {
+            None
+        }
+    }
+}
