@@ -40,8 +40,13 @@ pub(crate) fn run(a: &BenchArgs, g: &Global) -> anyhow::Result<()> {
     if a.target == BenchTarget::Explore {
         return bench_explore(a, g);
     }
+    if a.target == BenchTarget::Roi {
+        return bench_roi(a, g);
+    }
     let (name, n, secs, ops) = match a.target {
-        BenchTarget::Visibility | BenchTarget::Explore => unreachable!("handled above"),
+        BenchTarget::Visibility | BenchTarget::Explore | BenchTarget::Roi => {
+            unreachable!("handled above")
+        }
         BenchTarget::Mdp => {
             let general = a.solver == SolverArg::General;
             let n = a.n.unwrap_or(if general { 180 } else { 900 });
@@ -144,6 +149,58 @@ fn bench_explore(a: &BenchArgs, g: &Global) -> anyhow::Result<()> {
         "threads": rayon::current_num_threads(),
         "checks": "no error, scans <= r + 1, no open window, coverage >= 1 - 1e-9",
         "runs_failing_checks": failing.len(), "failing": details,
+    });
+    emit(g, &value, true, |w| writeln!(w, "{}", serde_json::to_string(&value).unwrap_or_default()))
+}
+
+fn bench_roi(a: &BenchArgs, g: &Global) -> anyhow::Result<()> {
+    use stopscan::offline::grid::{GridBounds, tree_depth};
+    use stopscan::sim::Recording;
+    use stopscan::world::grid::{Drift, GridRoi, GridSensor, GridWorld};
+    let cells = a.n.unwrap_or(1_000_000);
+    if cells == 0 || a.robots == 0 {
+        bail!("--n (cells) and --robots must be positive");
+    }
+    let t = Instant::now();
+    let roi = GridRoi::random(cells, g.seed)?;
+    let generate = t.elapsed().as_secs_f64();
+    let cost = CostModel::new(0.0, 0.0, 1.0)?;
+    let mut last = None;
+    let mut times = Vec::new();
+    for _ in 0..a.repeat.max(1) {
+        let mut world = GridWorld::new(roi.clone(), Drift::default(), GridSensor::Ideal, g.seed);
+        let t = Instant::now();
+        let m = stopscan::sim::grid::explore(&mut world, a.robots, cost, Recording::NONE)?;
+        times.push(t.elapsed().as_secs_f64());
+        last = Some((world, m));
+    }
+    let Some((world, m)) = last else { bail!("no run") };
+    let visited = world.visited().len();
+    let home = m.team.robots.iter().all(|r| r.done && r.at == roi.start());
+    let b = GridBounds::new(
+        roi.len(),
+        roi.bounds(),
+        tree_depth(&world.records()),
+        a.robots,
+        world.time_model(&cost),
+    );
+    let time = m.team.makespan();
+    let t = Instant::now();
+    let rows = stopscan::experiment::grid::fig7_rows(stopscan::experiment::ROI_TRIALS, g.seed)?;
+    let fig7 = t.elapsed().as_secs_f64();
+    let trials: usize = rows.iter().map(|r| r.trials).sum();
+    let within: usize = rows.iter().map(|r| r.within_upper).sum();
+    let value = json!({
+        "name": "roi", "cells": cells, "robots": a.robots,
+        "generate_seconds": generate,
+        "simulate_seconds_median": median(times),
+        "repeat": a.repeat.max(1),
+        "steps": m.team.steps, "robot_moves": m.team.tally().moves,
+        "time": time, "lemma1_upper": b.lemma1_upper, "d_max": b.d_max,
+        "checks": {"cells_visited": visited, "all_home": home, "within_lemma1": time <= b.lemma1_upper},
+        "fig7_seconds": fig7, "fig7_points": rows.len(), "fig7_trials": trials,
+        "fig7_trials_within_lemma1": within,
+        "threads": rayon::current_num_threads(),
     });
     emit(g, &value, true, |w| writeln!(w, "{}", serde_json::to_string(&value).unwrap_or_default()))
 }

@@ -471,6 +471,9 @@ pub(crate) enum BenchTarget {
     Visibility,
     /// Exploration of --n generated office floors in parallel (the paper's algorithm).
     Explore,
+    /// A random region of --n cells (default 10^6) explored by --robots robots (default 64),
+    /// then the three Fig. 7 sweeps of the ROI paper (100 trials per point).
+    Roi,
 }
 
 #[derive(Debug, Args)]
@@ -496,4 +499,7 @@ pub(crate) struct BenchArgs {
     /// Sensor range for `bench visibility` (range-limited queries).
     #[arg(long)]
     pub(crate) range: Option<f64>,
+    /// Robots for `bench roi`.
+    #[arg(long, default_value_t = 64)]
+    pub(crate) robots: usize,
 }

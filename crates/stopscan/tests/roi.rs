@@ -2,11 +2,14 @@
 //! checked against the paper's invariants (every cell visited, everyone home, within Lemma 1).
 
 use proptest::prelude::*;
+use stopscan::geometry::Domain;
+use stopscan::io::grid::{GridOptions, read_roi};
 use stopscan::offline::grid::{GridBounds, tree_depth};
 use stopscan::protocol::CostModel;
 use stopscan::protocol::grid::{CellSet, TimeModel};
-use stopscan::sim::Recording;
-use stopscan::sim::grid::{Mission, explore};
+use stopscan::sim::grid::{Mission, MissionPlan, Search, explore};
+use stopscan::sim::{NoObserver, Recording};
+use stopscan::world::grid::camera::CameraModel;
 use stopscan::world::grid::{Drift, GridRoi, GridSensor, GridWorld};
 
 /// Replays a finished mission from its paths alone and checks it.
@@ -129,48 +132,6 @@ proptest! {
 }
 
 #[test]
-#[ignore = "debugging aid"]
-fn print_fork() {
-    let mut cells = vec![[0, 0]];
-    for k in 1..=5 {
-        cells.extend([[-k, 0], [k, 0], [0, k], [0, -k]]);
-    }
-    let roi = GridRoi::new("plus", cells, [0, 0], 1.0).unwrap();
-    let mut world = GridWorld::new(roi, Drift::default(), GridSensor::Ideal, 0);
-    let m =
-        explore(&mut world, 4, CostModel::new(0.0, 0.0, 1.0).unwrap(), Recording::PATHS).unwrap();
-    for r in &m.team.robots {
-        eprintln!("{:?}", r.path);
-    }
-}
-
-#[test]
-#[ignore = "debugging aid"]
-fn print_probes() {
-    use stopscan::protocol::grid::VertexState;
-    for seed in 0..40 {
-        let roi = GridRoi::random(352, seed).unwrap();
-        let mut world = GridWorld::new(roi, Drift::default(), GridSensor::Ideal, seed);
-        let m = explore(&mut world, 3, CostModel::new(0.0, 0.0, 1.0).unwrap(), Recording::PATHS)
-            .unwrap();
-        let probes: usize = world
-            .records()
-            .values()
-            .map(|r| r.child_states.iter().filter(|s| **s == VertexState::Pruned).count())
-            .sum();
-        let tm = world.time_model(&m.plan.cost);
-        let b = GridBounds::new(352, world.roi().bounds(), tree_depth(&world.records()), 3, tm);
-        let moves: Vec<u64> = m.team.robots.iter().map(|r| r.tally.moves).collect();
-        eprintln!(
-            "seed {seed}: time {} bound {} dmax {} probes {probes} moves {moves:?}",
-            m.team.makespan(),
-            b.lemma1_upper,
-            b.d_max
-        );
-    }
-}
-
-#[test]
 #[ignore = "long stress run: cargo test --release --test roi stress -- --ignored"]
 fn stress() {
     for seed in 0..3000u64 {
@@ -185,41 +146,194 @@ fn stress() {
     }
 }
 
+fn plan(robots: usize, battery_s: Option<f64>, search: Option<Search>) -> MissionPlan {
+    MissionPlan {
+        robots,
+        cost: CostModel::new(0.0, 0.0, 1.0).unwrap(),
+        battery_s,
+        search,
+        map: true,
+    }
+}
+
+/// A mission written out mid-way and read back carries on exactly as if never stopped.
 #[test]
-#[ignore = "timing aid"]
-fn million() {
-    let t0 = std::time::Instant::now();
-    let roi = GridRoi::random(1_000_000, 1).unwrap();
-    let t1 = std::time::Instant::now();
-    let robots = std::env::var("ROBOTS").map_or(64, |v| v.parse().unwrap());
-    let mut world = GridWorld::new(roi, Drift::default(), GridSensor::Ideal, 1);
-    let rec = if std::env::var("SKIP_CHECK").is_ok() { Recording::NONE } else { Recording::PATHS };
-    let m = explore(&mut world, robots, CostModel::new(0.0, 0.0, 1.0).unwrap(), rec).unwrap();
-    let t2 = std::time::Instant::now();
-    eprintln!(
-        "gen {:?} sim {:?} steps {} makespan {} moves {}",
-        t1 - t0,
-        t2 - t1,
-        m.team.steps,
-        m.team.makespan(),
-        m.team.tally().moves
-    );
-    eprintln!("dmax {}", tree_depth(&world.records()));
-    if std::env::var("SKIP_CHECK").is_err() {
-        check(&world, &m);
+fn a_saved_mission_resumes_exactly() {
+    let roi = GridRoi::random(300, 5).unwrap();
+    let drift = Drift { speed: 0.3, heading_deg: 200.0 };
+    let fresh = || GridWorld::new(roi.clone(), drift, GridSensor::Ideal, 5);
+    let mut whole_world = fresh();
+    let mut whole = Mission::new(&whole_world, plan(5, Some(90.0), None), Recording::ALL).unwrap();
+    whole.run(&mut whole_world, &mut NoObserver, 1_000_000).unwrap();
+    for cut in [1, 17, 250] {
+        let mut world = fresh();
+        let mut m = Mission::new(&world, plan(5, Some(90.0), None), Recording::ALL).unwrap();
+        for _ in 0..cut {
+            m.step(&mut world, &mut NoObserver).unwrap();
+        }
+        m.snapshot(&world);
+        let text = serde_json::to_string(&m).unwrap();
+        let mut back: Mission = serde_json::from_str(&text).unwrap();
+        let mut world = back.restore(fresh());
+        back.run(&mut world, &mut NoObserver, 1_000_000).unwrap();
+        back.snapshot(&world);
+        let mut w = whole.clone();
+        w.snapshot(&whole_world);
+        assert_eq!(back.team.robots, w.team.robots, "cut at {cut}");
+        assert_eq!(back.boards, w.boards, "cut at {cut}");
+        assert_eq!(back.marks, w.marks, "cut at {cut}");
+        assert_eq!(serde_json::to_string(&back).unwrap(), serde_json::to_string(&w).unwrap());
+    }
+}
+
+/// With a battery, every flight between two swaps fits in it, and the mission still covers
+/// every cell and ends at home.
+#[test]
+fn batteries_force_swaps_but_not_gaps() {
+    for (seed, robots, battery) in [(1u64, 1usize, 60.0), (2, 4, 45.0), (3, 3, 200.0)] {
+        let roi = GridRoi::random(400, seed).unwrap();
+        let mut world = GridWorld::new(
+            roi.clone(),
+            Drift { speed: 0.2, heading_deg: 0.0 },
+            GridSensor::Ideal,
+            seed,
+        );
+        let mut m =
+            Mission::new(&world, plan(robots, Some(battery), None), Recording::PATHS).unwrap();
+        m.run(&mut world, &mut NoObserver, 10_000_000).unwrap();
+        assert!(m.failures().is_empty(), "{:?}", m.failures());
+        assert!(m.swaps().iter().sum::<u32>() > 0, "a {battery} s battery needs swaps");
+        assert_eq!(world.visited().len(), roi.len());
+        let tm = world.time_model(&m.plan.cost);
+        for (i, r) in m.team.robots.iter().enumerate() {
+            assert_eq!(r.at, roi.start());
+            // Flight time between visits home never exceeds the battery.
+            let mut flight = 0.0;
+            for w in r.path.windows(2) {
+                flight += tm.seconds(w[0], w[1]).unwrap();
+                assert!(flight <= battery + 1e-9, "robot {i} flew {flight} s on one battery");
+                if w[1] == roi.start() {
+                    flight = 0.0;
+                }
+            }
+        }
+    }
+}
+
+/// A battery too small to reach the far side and come back is reported, not ignored.
+#[test]
+fn a_battery_too_small_is_a_failure() {
+    let roi = GridRoi::new("line", (0..30).map(|c| [0, c]), [0, 0], 1.0).unwrap();
+    let mut world = GridWorld::new(roi, Drift::default(), GridSensor::Ideal, 0);
+    let mut m = Mission::new(&world, plan(1, Some(20.0), None), Recording::PATHS).unwrap();
+    m.run(&mut world, &mut NoObserver, 1_000_000).unwrap();
+    let f = m.failures();
+    assert_eq!(f.len(), 1);
+    assert!(f[0].contains("cannot reach cell (row 0, col 11)"), "{f:?}");
+}
+
+/// The lawn-mowing search finds a region that does not start under the robots, explores it,
+/// and brings every robot back to the launch cell.
+#[test]
+fn search_then_explore_then_land() {
+    let roi = GridRoi::random(120, 9).unwrap();
+    let [lo, hi] = roi.bounds();
+    let launch = [lo[0] - 6, lo[1] - 6];
+    let search = Search { launch, min: [lo[0] - 6, lo[1] - 6], max: [hi[0] + 6, hi[1] + 6] };
+    let mut world = GridWorld::without_root(roi.clone(), Drift::default(), GridSensor::Ideal, 9);
+    let mut m = Mission::new(&world, plan(3, None, Some(search)), Recording::PATHS).unwrap();
+    m.run(&mut world, &mut NoObserver, 1_000_000).unwrap();
+    assert!(m.failures().is_empty(), "{:?}", m.failures());
+    assert_eq!(world.visited().len(), roi.len(), "every region cell visited");
+    assert!(m.team.robots.iter().all(|r| r.done && r.at == launch));
+    assert_eq!(m.marks.positive(), roi.cells(), "the map is the region exactly");
+}
+
+/// The camera pipeline (noise, blur, shadows, glare, 3-of-5 votes) maps a region almost
+/// exactly; conservative marking keeps every cell it ever saw as region.
+#[test]
+fn the_camera_pipeline_maps_the_region() {
+    let roi = GridRoi::random(150, 4).unwrap();
+    let sensor = GridSensor::Camera(CameraModel::default());
+    let mut world = GridWorld::new(roi.clone(), Drift::default(), sensor, 4);
+    let mut m = Mission::new(&world, plan(2, None, None), Recording::PATHS).unwrap();
+    m.run(&mut world, &mut NoObserver, 1_000_000).unwrap();
+    let mapped = m.marks.positive();
+    let iou = roi.iou(&mapped);
+    assert!(iou > 0.9, "IoU {iou}");
+    assert!(m.team.robots.iter().all(|r| r.done && r.at == roi.start()));
+}
+
+/// Section 5: the outer approximation of fat shapes, with Lemma 3 (C_out ≤ 3 C_in + 6) and
+/// the IoU of a complete map against the shape.
+#[test]
+fn outer_approximation_of_fat_shapes() {
+    // An axis-aligned 4 × 3 rectangle on cell boundaries: outer = inner = 12 cells, IoU 1.
+    let rect =
+        Domain::new(vec![[-0.5, -0.5], [3.5, -0.5], [3.5, 2.5], [-0.5, 2.5]], vec![]).unwrap();
+    let roi = GridRoi::outer_approximation("rect", &rect, [0.0, 0.0], 1.0).unwrap();
+    assert_eq!(roi.approximation_counts(), Some((12, 12)));
+    assert!((roi.iou(roi.cells()) - 1.0).abs() < 1e-12);
+    // Shifted by a quarter cell: outer 5 × 4 = 20, inner 3 × 2 = 6.
+    let roi = GridRoi::outer_approximation("shifted", &rect, [0.25, 0.25], 1.0).unwrap();
+    assert_eq!(roi.approximation_counts(), Some((20, 6)));
+    assert!((roi.iou(roi.cells()) - 12.0 / 20.0).abs() < 1e-12);
+    // Rotated rectangles and discs of width at least one cell: Lemma 3 holds.
+    for k in 0..24 {
+        let a = f64::from(k) * 0.13;
+        let (w, h) = (2.0 + f64::from(k % 5), 1.5 + f64::from(k % 3));
+        let ring: Vec<[f64; 2]> = [(-w, -h), (w, -h), (w, h), (-w, h)]
+            .iter()
+            .map(|&(x, y)| {
+                [x * a.cos() - y * a.sin() + 0.1 * f64::from(k), x * a.sin() + y * a.cos()]
+            })
+            .collect();
+        let shape = Domain::new(ring, vec![]).unwrap();
+        let roi =
+            GridRoi::outer_approximation("r", &shape, [0.1 * f64::from(k), 0.0], 1.0).unwrap();
+        let (out, inner) = roi.approximation_counts().unwrap();
+        assert!(out <= 3 * inner + 6, "Lemma 3 fails: C_out {out}, C_in {inner}");
+        assert!((roi.true_area() - 4.0 * w * h).abs() < 1e-9);
     }
 }
 
 #[test]
-#[ignore = "experiment"]
-fn order_experiment() {
-    let mut total = 0.0;
-    for seed in 0..12 {
-        let roi = GridRoi::random(50_000, seed).unwrap();
-        let mut world = GridWorld::new(roi, Drift::default(), GridSensor::Ideal, seed);
-        let m = explore(&mut world, 64, CostModel::new(0.0, 0.0, 1.0).unwrap(), Recording::NONE)
-            .unwrap();
-        total += m.team.makespan();
+fn random_regions_are_seeded_connected_and_sized() {
+    for c in [1, 2, 7, 500] {
+        let a = GridRoi::random(c, 3).unwrap();
+        assert_eq!(a.len(), c);
+        assert_eq!(a.cells(), GridRoi::random(c, 3).unwrap().cells());
+        assert_eq!(a.distances().len(), c, "4-connected");
     }
-    eprintln!("mean makespan {}", total / 12.0);
+    assert_ne!(GridRoi::random(50, 1).unwrap().cells(), GridRoi::random(50, 2).unwrap().cells());
+    assert!(GridRoi::random(0, 1).is_err());
+}
+
+#[test]
+fn masks_load_with_their_cell_size() {
+    let dir = std::env::temp_dir().join(format!("stopscan-mask-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    // A 6 × 4 P5 mask: a 4 × 2 white block; with 2-pixel cells, 2 × 1 cells.
+    let mut px = vec![0u8; 24];
+    for y in 1..3 {
+        for x in 1..5 {
+            px[y * 6 + x] = 255;
+        }
+    }
+    let path = dir.join("m.pgm");
+    let mut bytes = b"P5\n6 4\n255\n".to_vec();
+    bytes.extend(&px);
+    std::fs::write(&path, bytes).unwrap();
+    let one = read_roi(&path, &GridOptions::default()).unwrap();
+    assert_eq!(one.len(), 8);
+    let two = read_roi(&path, &GridOptions { cell_px: 2, cell_size: 0.5, start: None }).unwrap();
+    // Outer approximation: every 2 × 2 block touching the white block.
+    assert_eq!(two.cells(), &[[0, 0], [0, 1], [0, 2], [1, 0], [1, 1], [1, 2]]);
+    assert_eq!(two.cell_size(), 0.5);
+    let e = read_roi(&path, &GridOptions { start: Some([9, 9]), ..GridOptions::default() })
+        .unwrap_err();
+    assert!(
+        e.to_string().contains("m.pgm: the start cell (row 9, col 9) is not a region cell"),
+        "{e}"
+    );
 }

@@ -21,7 +21,7 @@ impl<S: GridStrategy> Agent<GridWorld> for S {
     fn act(&mut self, feedback: &GridFeedback, context: &GridContext) -> Action<Cell> {
         GridStrategy::act(self, feedback, context)
     }
-    fn note(&mut self) -> Option<Record> {
+    fn note(&mut self) -> Option<&Record> {
         GridStrategy::note(self)
     }
     fn report(&mut self, feedback: &GridFeedback) -> Option<Record> {
@@ -189,7 +189,10 @@ impl Mission {
         observer: &mut dyn Observer<Cell, GridObservation>,
     ) -> Result<Flow, SimError<Cell>> {
         let cost = self.plan.cost;
-        let marks = self.plan.map.then_some(&mut self.marks);
+        if !self.plan.map {
+            return self.team.step(world, &cost, &mut self.robots, observer);
+        }
+        let marks = Some(&mut self.marks);
         self.team.step(world, &cost, &mut self.robots, &mut Mapper { marks, next: observer })
     }
 
@@ -205,7 +208,10 @@ impl Mission {
         limit: u64,
     ) -> Result<Flow, SimError<Cell>> {
         let cost = self.plan.cost;
-        let marks = self.plan.map.then_some(&mut self.marks);
+        if !self.plan.map {
+            return self.team.run(world, &cost, &mut self.robots, observer, limit);
+        }
+        let marks = Some(&mut self.marks);
         self.team.run(world, &cost, &mut self.robots, &mut Mapper { marks, next: observer }, limit)
     }
 
@@ -228,7 +234,8 @@ impl Mission {
 
     /// Why robots gave up, if any did (a battery too small, or a search that found nothing).
     pub fn failures(&self) -> Vec<String> {
-        let mut v: Vec<String> = self.robots.iter().filter_map(|r| r.failure.clone()).collect();
+        let mut v: Vec<String> =
+            self.robots.iter().filter_map(|r| r.failure.as_deref().map(String::from)).collect();
         if self.robots.iter().any(|r| r.inner().not_found) {
             v.push("the search box was swept without seeing the region".into());
         }

@@ -43,7 +43,7 @@ pub trait Arena {
     type Context;
     /// What a robot leaves where it stands (robots of a group often leave equal notes; the
     /// loop passes each distinct note once).
-    type Note: PartialEq;
+    type Note: PartialEq + Clone;
 
     /// Checks a straight move that begins at time `clock` and prices it, or refuses it.
     fn travel(
@@ -77,7 +77,7 @@ pub trait Agent<W: Arena + ?Sized> {
         context: &W::Context,
     ) -> Action<W::Place>;
     /// What the robot leaves where it stands after acting (nothing by default).
-    fn note(&mut self) -> Option<W::Note> {
+    fn note(&mut self) -> Option<&W::Note> {
         None
     }
     /// What the robot tells the robots it meets as it arrives, before anyone acts (nothing by
@@ -175,10 +175,16 @@ pub struct Team<P, O> {
     /// What the tracks keep.
     pub recording: Recording,
     /// The robots not done, by (clock, index); rebuilt from the tracks after loading.
-    /// Every robot's (clock, place) as ordered keys, `u64::MAX` once done: a compact copy of
-    /// the tracks that the loop scans to find the next group. Rebuilt after loading.
+    /// Every robot's clock as an ordered key (`u64::MAX` once done) and place as a number: a
+    /// compact copy of the tracks that the loop scans to find the next group. Rebuilt after
+    /// loading.
     #[serde(skip)]
-    keys: Vec<(u64, u64)>,
+    clocks: Vec<u64>,
+    #[serde(skip)]
+    spots: Vec<u64>,
+    /// The group acting now.
+    #[serde(skip)]
+    group: Vec<usize>,
 }
 
 /// A clock as an ordered key: non-negative floats order as their bits do.
@@ -223,7 +229,14 @@ impl<P: Clone + PartialEq + Debug + Spot, O: Clone> Team<P, O> {
                 observations: Vec::new(),
             })
             .collect();
-        Self { robots, steps: 0, recording, keys: Vec::new() }
+        Self {
+            robots,
+            steps: 0,
+            recording,
+            clocks: Vec::new(),
+            spots: Vec::new(),
+            group: Vec::new(),
+        }
     }
 
     /// The time the last robot finished (the makespan), or the latest clock so far.
@@ -247,22 +260,32 @@ impl<P: Clone + PartialEq + Debug + Spot, O: Clone> Team<P, O> {
     }
 
     /// The robots that act next: the robot with the earliest clock (the lowest index among
-    /// equals) and every robot standing with it at that time.
-    fn next_group(&mut self) -> Option<Vec<usize>> {
-        if self.keys.len() != self.robots.len() {
-            self.keys = self.robots.iter().map(Self::key_of).collect();
+    /// equals) and every robot standing with it at that time. Fills `self.group`.
+    fn next_group(&mut self) -> bool {
+        if self.clocks.len() != self.robots.len() {
+            self.clocks = self.robots.iter().map(|r| Self::key_of(r).0).collect();
+            self.spots = self.robots.iter().map(|r| Self::key_of(r).1).collect();
         }
-        let first = (0..self.keys.len()).min_by_key(|&i| (self.keys[i].0, i))?;
-        let k = self.keys[first];
-        if k.0 == u64::MAX {
-            return None;
+        let mut first = 0;
+        let mut best = u64::MAX;
+        for (i, &c) in self.clocks.iter().enumerate() {
+            if c < best {
+                best = c;
+                first = i;
+            }
         }
+        self.group.clear();
+        if best == u64::MAX {
+            return false;
+        }
+        let spot = self.spots[first];
         let at = &self.robots[first].at;
-        Some(
-            (first..self.keys.len())
-                .filter(|&i| self.keys[i] == k && self.robots[i].at == *at)
-                .collect(),
-        )
+        for i in first..self.clocks.len() {
+            if self.clocks[i] == best && self.spots[i] == spot && self.robots[i].at == *at {
+                self.group.push(i);
+            }
+        }
+        true
     }
 
     fn key_of(r: &Track<P, O>) -> (u64, u64) {
@@ -284,9 +307,10 @@ impl<P: Clone + PartialEq + Debug + Spot, O: Clone> Team<P, O> {
         W: Arena<Place = P, Observation = O>,
         A: Agent<W>,
     {
-        let Some(group) = self.next_group() else {
+        if !self.next_group() {
             return Ok(Flow::Finished);
-        };
+        }
+        let group = std::mem::take(&mut self.group);
         self.steps += 1;
         let (clock, at) = (self.robots[group[0]].clock, self.robots[group[0]].at.clone());
         let members: Vec<Member<P>> = group
@@ -306,18 +330,24 @@ impl<P: Clone + PartialEq + Debug + Spot, O: Clone> Team<P, O> {
         }
         let context = world.meet(&at, clock, &members);
         let mut stop = false;
+        // Robots of a group often fly the same leg: price it once.
+        let mut last_leg: Option<(P, Leg)> = None;
         for &i in &group {
             let agent = &mut agents[i];
             let action = agent.act(&self.robots[i].feedback, &context);
             if let Some(n) = agent.note()
-                && notes.last() != Some(&n)
+                && notes.last() != Some(n)
             {
-                notes.push(n);
+                notes.push(n.clone());
             }
             let r = &mut self.robots[i];
             match action {
                 Action::MoveTo { to } => {
-                    let Some(leg) = world.travel(&r.at, &to, r.clock, cost) else {
+                    let priced = match &last_leg {
+                        Some((t, leg)) if *t == to => Some(*leg),
+                        _ => world.travel(&r.at, &to, r.clock, cost),
+                    };
+                    let Some(leg) = priced else {
                         return Err(SimError::Blocked {
                             strategy: agent.name().into(),
                             robot: i,
@@ -325,6 +355,7 @@ impl<P: Clone + PartialEq + Debug + Spot, O: Clone> Team<P, O> {
                             to,
                         });
                     };
+                    last_leg = Some((to.clone(), leg));
                     r.tally.moves += 1;
                     r.tally.distance += leg.metres;
                     r.clock += cost.move_time + leg.seconds;
@@ -363,14 +394,16 @@ impl<P: Clone + PartialEq + Debug + Spot, O: Clone> Team<P, O> {
             world.leave(&at, n);
         }
         for &i in &group {
-            self.keys[i] = Self::key_of(&self.robots[i]);
+            (self.clocks[i], self.spots[i]) = Self::key_of(&self.robots[i]);
         }
+        let any_done = group.iter().any(|&i| self.robots[i].done);
+        self.group = group;
         if stop {
             observer.on_finish(&self.tally());
             return Ok(Flow::Interrupted);
         }
         // Done robots have the largest key; the team is finished when the next one is done.
-        if group.iter().any(|&i| self.robots[i].done) && self.finished() {
+        if any_done && self.finished() {
             observer.on_finish(&self.tally());
             return Ok(Flow::Finished);
         }

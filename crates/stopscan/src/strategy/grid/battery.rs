@@ -41,7 +41,7 @@ pub struct Battery<S> {
     /// Batteries swapped so far.
     pub swaps: u32,
     /// Why the robot gave up, if it did (a battery too small to reach a vertex and return).
-    pub failure: Option<String>,
+    pub failure: Option<Box<str>>,
 }
 
 impl<S> Battery<S> {
@@ -131,12 +131,12 @@ impl<S> Battery<S> {
         let (cost, end) = self.cost_of(resume, &then);
         let need = self.fly(home, resume) + cost + self.fly(end, home);
         if need > self.capacity.unwrap_or(f64::INFINITY) {
-            self.failure = Some(format!(
+            self.failure = Some(Box::from(format!(
                 "a battery of {:.1} s cannot reach cell (row {}, col {}) and return: that needs {need:.1} s",
                 self.capacity.unwrap_or_default(),
                 end[0],
                 end[1]
-            ));
+            )));
             return Action::Done;
         }
         if resume == home {
@@ -167,6 +167,10 @@ impl<S: GridStrategy> GridStrategy for Battery<S> {
     }
 
     fn act(&mut self, feedback: &GridFeedback, context: &GridContext) -> Action<Cell> {
+        if self.capacity.is_none() {
+            self.inner_acted = true;
+            return self.inner.act(feedback, context);
+        }
         self.inner_acted = false;
         if let GridFeedback::Start(c) = feedback {
             self.home.get_or_insert(*c);
@@ -194,7 +198,7 @@ impl<S: GridStrategy> GridStrategy for Battery<S> {
         if self.detour == Detour::None { self.inner.report(feedback) } else { None }
     }
 
-    fn note(&mut self) -> Option<Record> {
+    fn note(&mut self) -> Option<&Record> {
         if self.inner_acted { self.inner.note() } else { None }
     }
 }

@@ -36,7 +36,7 @@ pub trait GridStrategy {
     /// neighbours), or done.
     fn act(&mut self, feedback: &GridFeedback, context: &GridContext) -> Action<Cell>;
     /// What the robot leaves on the cell it stands on after its last action.
-    fn note(&mut self) -> Option<Record>;
+    fn note(&mut self) -> Option<&Record>;
     /// What the robot tells the others as it arrives, before anyone acts: the state of the
     /// child it comes back from.
     fn report(&mut self, feedback: &GridFeedback) -> Option<Record>;

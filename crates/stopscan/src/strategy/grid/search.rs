@@ -29,7 +29,7 @@ enum Phase {
 pub struct LawnMower<S> {
     inner: S,
     /// A fresh inner strategy, for a new start after a false alarm.
-    fresh: Option<S>,
+    fresh: Option<Box<S>>,
     lawn: Vec<Cell>,
     /// The next lawn cell when the search goes on.
     resume_at: usize,
@@ -79,7 +79,7 @@ impl<S> LawnMower<S> {
             east = !east;
         }
         Self {
-            fresh: Some(inner.clone()),
+            fresh: Some(Box::new(inner.clone())),
             inner,
             lawn,
             resume_at: 0,
@@ -179,7 +179,9 @@ impl<S: GridStrategy + Clone> GridStrategy for LawnMower<S> {
                     // A false alarm: the cell entered was not region after all and nothing
                     // around it was. Sweep on with a fresh inner strategy.
                     Action::Done if !self.confirmed && self.fresh.is_some() => {
-                        self.inner = self.fresh.clone().unwrap_or_else(|| self.inner.clone());
+                        if let Some(f) = &self.fresh {
+                            self.inner = S::clone(f);
+                        }
                         self.next_lawn_cell(self.resume_at)
                     }
                     a => self.after_inner(a),
@@ -195,7 +197,7 @@ impl<S: GridStrategy + Clone> GridStrategy for LawnMower<S> {
         if self.phase == Phase::Inner { self.inner.report(feedback) } else { None }
     }
 
-    fn note(&mut self) -> Option<Record> {
+    fn note(&mut self) -> Option<&Record> {
         if matches!(self.phase, Phase::Inner) || self.phase == Phase::Homing {
             self.inner.note()
         } else {

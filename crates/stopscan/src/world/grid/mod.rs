@@ -106,15 +106,27 @@ impl GridRoi {
         if !roi.contains(start) {
             return Err(InvalidRoi::StartOutside(start));
         }
-        let reached = roi.distances();
-        if reached.len() < roi.cells.len() {
-            let cell =
-                roi.cells.iter().copied().find(|c| !reached.contains_key(c)).unwrap_or(start);
-            return Err(InvalidRoi::Disconnected {
-                cell,
-                reached: reached.len(),
-                total: roi.cells.len(),
-            });
+        // 4-connectivity: a flood fill over the bitmap.
+        let mut seen = vec![0u64; roi.bits.len()];
+        let mut stack = vec![start];
+        let mut reached = 0;
+        while let Some(c) = stack.pop() {
+            let Some(k) = roi.index(c) else { continue };
+            if seen[k / 64] >> (k % 64) & 1 == 1 || !roi.contains(c) {
+                continue;
+            }
+            seen[k / 64] |= 1 << (k % 64);
+            reached += 1;
+            stack.extend((0..4).map(|i| neighbour(c, i)));
+        }
+        if reached < roi.cells.len() {
+            let cell = roi
+                .cells
+                .iter()
+                .copied()
+                .find(|&c| roi.index(c).is_some_and(|k| seen[k / 64] >> (k % 64) & 1 == 0))
+                .unwrap_or(start);
+            return Err(InvalidRoi::Disconnected { cell, reached, total: roi.cells.len() });
         }
         Ok(roi)
     }
@@ -491,6 +503,27 @@ impl Boards {
         }
     }
 
+    /// What a neighbour learns of `c`: whether it is in the tree, its parent and its state
+    /// (read from the packed record, without unpacking the rest).
+    fn tree_state(&self, c: Cell) -> NeighbourState {
+        let (parent, root, state) = match self.index(c) {
+            Some(i) if self.dense[i].flags & OVERFLOW == 0 => {
+                let p = self.dense[i];
+                let parent = (p.parent > 0).then(|| neighbour(c, usize::from(p.parent - 1)));
+                (parent, p.flags & ROOT != 0, state_of(p.state))
+            }
+            _ => {
+                let r = self.sparse.get(&c).copied().unwrap_or_default();
+                (r.parent, r.root, r.state)
+            }
+        };
+        if root || parent.is_some() {
+            NeighbourState { in_tree: true, parent, state }
+        } else {
+            NeighbourState::default()
+        }
+    }
+
     fn set(&mut self, c: Cell, r: Record) {
         match (self.index(c), Packed::pack(c, &r)) {
             (Some(i), Some(p)) => {
@@ -701,12 +734,7 @@ impl Arena for GridWorld {
         let present = members.iter().map(|m| m.robot).collect();
         self.mark_visited(*at);
         let record = self.boards.get(*at);
-        let neighbours = std::array::from_fn(|i| match self.boards.get(neighbour(*at, i)) {
-            r if r.root || r.parent.is_some() => {
-                NeighbourState { in_tree: true, parent: r.parent, state: r.state }
-            }
-            _ => NeighbourState::default(),
-        });
+        let neighbours = std::array::from_fn(|i| self.boards.tree_state(neighbour(*at, i)));
         GridContext { record, neighbours, present }
     }
 
