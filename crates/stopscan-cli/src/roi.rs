@@ -274,6 +274,7 @@ fn summary(w: &mut dyn Write, r: &GridRunRecord) -> std::io::Result<()> {
         ("lower bound on the optimum, Lemma 2 (s)", num(Some(b.bounds.lemma2_lower), 3)),
         ("time / Lemma 2 (competitive ratio estimate)", opt(b.competitive_ratio, 3)),
         ("Theorem 1 ratio", num(Some(b.bounds.theorem1_ratio), 3)),
+        ("Theorem 2 ratio (arbitrary shapes)", num(Some(b.bounds.theorem2_ratio), 3)),
         ("single-robot bound (8) (s)", opt(b.bounds.bound8_single, 3)),
         ("lawn mower baseline (s)", num(Some(b.bounds.lawn_mower), 3)),
         ("tree depth d_max", b.bounds.d_max.to_string()),

@@ -272,6 +272,8 @@ pub struct GridMetrics {
     pub travel_time_total: f64,
     /// Region cells some robot stood on.
     pub visited_cells: usize,
+    /// Their area, m² (DESIGN.md's `covered_area`).
+    pub covered_area: f64,
     /// `visited_cells / cells`.
     pub coverage: f64,
     /// Whether every robot ended on the start cell.
@@ -402,6 +404,7 @@ impl GridRunRecord {
                 move_time_total: cost.move_time * tally.moves as f64,
                 travel_time_total: tally.distance / cost.speed,
                 visited_cells: visited,
+                covered_area: visited as f64 * s * s,
                 coverage: visited as f64 / roi.len() as f64,
                 all_home: mission.team.robots.iter().all(|r| r.done && r.at == home),
                 mapped_cells: mapped.as_ref().map(Vec::len),

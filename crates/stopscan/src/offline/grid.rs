@@ -49,6 +49,15 @@ pub fn theorem1(robots: usize, v: Speeds) -> (f64, f64) {
     (2.0 * (v.robot + v.region) * (robots as f64 + l) / den, v.cell_size * 2.0 / den)
 }
 
+/// Theorem 2 (arbitrary fat shapes, through the outer grid approximation): `ALG ≤ ratio ·
+/// OPT + additive` with `ratio = 2(S_r + S_p)(18R + ⌊log R⌋) / M` and `additive = 48 / M`,
+/// `M = (S_r − S_p)(1 + ⌊log R⌋)` (times the cell size).
+pub fn theorem2(robots: usize, v: Speeds) -> (f64, f64) {
+    let l = f64::from(floor_log2(robots));
+    let m = (v.robot - v.region) * (1.0 + l);
+    (2.0 * (v.robot + v.region) * (18.0 * robots as f64 + l) / m, v.cell_size * 48.0 / m)
+}
+
 /// Equation (8), the tighter single-robot bound: `2 S_r C / ((S_r + S_p)(S_r − S_p))`.
 pub fn bound8_single(cells: usize, v: Speeds) -> f64 {
     v.cell_size * 2.0 * v.robot * cells as f64 / ((v.robot + v.region) * (v.robot - v.region))
@@ -133,6 +142,10 @@ pub struct GridBounds {
     pub theorem1_ratio: f64,
     /// Theorem 1's additive term.
     pub theorem1_additive: f64,
+    /// Theorem 2's competitive ratio (arbitrary fat shapes).
+    pub theorem2_ratio: f64,
+    /// Theorem 2's additive term.
+    pub theorem2_additive: f64,
     /// Equation (8) for one robot (`None` for a team).
     pub bound8_single: Option<f64>,
     /// The lawn-mower baseline.
@@ -151,12 +164,15 @@ impl GridBounds {
     ) -> Self {
         let v = Speeds::from(times);
         let (ratio, additive) = theorem1(robots, v);
+        let (ratio2, additive2) = theorem2(robots, v);
         Self {
             d_max,
             lemma1_upper: lemma1_upper(cells, d_max, robots, v),
             lemma2_lower: lemma2_lower(cells, robots, v),
             theorem1_ratio: ratio,
             theorem1_additive: additive,
+            theorem2_ratio: ratio2,
+            theorem2_additive: additive2,
             bound8_single: (robots == 1).then(|| bound8_single(cells, v)),
             lawn_mower: lawn_mower(bounds, robots, times),
         }
@@ -192,6 +208,14 @@ mod tests {
         let (ratio, add) = theorem1(4, v);
         assert!((ratio - 2.0 * 3.0 * 6.0 / 3.0).abs() < 1e-12);
         assert!((add - 2.0 / 3.0).abs() < 1e-12);
+    }
+
+    #[test]
+    fn theorem_2_is_the_abstract_constant() {
+        let v = Speeds { robot: 2.0, region: 1.0, cell_size: 1.0 };
+        let (ratio, add) = theorem2(4, v);
+        assert!((ratio - 2.0 * 3.0 * (72.0 + 2.0) / 3.0).abs() < 1e-12);
+        assert!((add - 16.0).abs() < 1e-12);
     }
 
     #[test]

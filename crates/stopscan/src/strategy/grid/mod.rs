@@ -4,15 +4,16 @@
 //! until the region is first seen, and a battery that forces a return, a swap and a resume.
 //!
 //! # Communication
-//! Robots learn from one another only through the vertex they stand on. Robots standing on
-//! the same vertex at the same time act together: each learns who the others are (to split the
-//! group). Each vertex also keeps the record that robots left on it (its parent, its children
-//! and their states): the bookkeeping devices of Brass et al. and Das et al., which the paper
-//! cites. Nobody has the whole tree: a robot reads one record, the one under it. Without the
-//! records, two robots in neighbouring branches would each explore the other's cells (their
-//! branches touch wherever the region has a cycle) and the Lemma 1 bound would not hold; with
-//! them, a robot that reaches a cell already claimed from another vertex learns it there and
-//! goes back (Algorithm 1's cycle test, lines 9–11), which costs one edge each way.
+//! Robots learn from one another only at the vertex they stand on. Robots standing on the same
+//! vertex at the same time act together: each learns who the others are (to split the group)
+//! and the news each brings back from below. Each vertex keeps the record that robots left on it
+//! (its parent, its children and their states): the bookkeeping devices of Brass et al. and Das
+//! et al., which the paper cites. At a vertex a robot also learns the state of the four
+//! neighbouring cells (Algorithm 1, line 7: "communicate … to update the state of N(v)"): whether
+//! each is in the tree, its parent and its state; the children it lists join the tree at once.
+//! Nobody has the whole tree: a robot carries only its path back to the root. With meetings
+//! alone, two robots in neighbouring branches would each explore the other's cells (branches
+//! touch wherever the region has a cycle) and the Lemma 1 bound would not hold.
 
 mod battery;
 mod dfs;
