@@ -318,55 +318,56 @@ pub(crate) struct RoiArgs {
     #[arg(long, conflicts_with = "resume")]
     pub(crate) random: Option<usize>,
     /// Robots (R).
-    #[arg(long, default_value_t = 1)]
+    #[arg(long, default_value_t = 1, conflicts_with = "resume")]
     pub(crate) robots: usize,
     /// Robot speed S_r, m/s.
-    #[arg(long, default_value_t = 1.0)]
+    #[arg(long, default_value_t = 1.0, conflicts_with = "resume")]
     pub(crate) robot_speed: f64,
     /// Speed S_p at which the region translates, m/s (must be below S_r).
-    #[arg(long, default_value_t = 0.0)]
+    #[arg(long, default_value_t = 0.0, conflicts_with = "resume")]
     pub(crate) roi_speed: f64,
     /// Heading of the region's drift, degrees counter-clockwise from east (the grid's +x).
-    #[arg(long, default_value_t = 0.0, allow_hyphen_values = true)]
+    #[arg(long, default_value_t = 0.0, allow_hyphen_values = true, conflicts_with = "resume")]
     pub(crate) roi_heading_deg: f64,
     /// Flight seconds per battery: a robot flies home to swap before it would run out, then
     /// resumes from the vertex it left (the field experiment).
-    #[arg(long)]
+    #[arg(long, conflicts_with = "resume")]
     pub(crate) battery_s: Option<f64>,
     /// Write the mission state here after every step (atomically), for --resume.
     #[arg(long, conflicts_with = "resume")]
     pub(crate) state: Option<PathBuf>,
-    /// Carry on with the mission saved in STATE (and keep writing it there).
+    /// Carry on with the mission saved in STATE (and keep writing it there); the mission's
+    /// settings come from STATE, so only --out, --svg and --format may be given with it.
     #[arg(long, value_name = "STATE")]
     pub(crate) resume: Option<PathBuf>,
     /// Side of a cell, metres (masks and polygons).
-    #[arg(long, default_value_t = 1.0)]
+    #[arg(long, default_value_t = 1.0, conflicts_with = "resume")]
     pub(crate) cell_m: f64,
     /// Pixels per cell side, for masks.
-    #[arg(long, default_value_t = 1)]
+    #[arg(long, default_value_t = 1, conflicts_with = "resume")]
     pub(crate) cell_px: usize,
     /// The start cell ROW,COL for masks and grids without S (default: the first region cell).
-    #[arg(long, allow_hyphen_values = true)]
+    #[arg(long, allow_hyphen_values = true, conflicts_with = "resume")]
     pub(crate) start: Option<String>,
     /// Sense with the field pipeline in simulation: a synthetic camera, the frame classifier
     /// and a vote over --frames frames per scan (conservative marking).
-    #[arg(long)]
+    #[arg(long, conflicts_with = "resume")]
     pub(crate) camera: bool,
     /// Frames per scan with --camera (the paper: 5, voted 3 of 5).
-    #[arg(long, default_value_t = 5)]
+    #[arg(long, default_value_t = 5, conflicts_with = "resume")]
     pub(crate) frames: usize,
     /// Sweep this box of cells ROW0,COL0,ROW1,COL1 lawn-mower fashion until the region is first
     /// seen (needs --launch).
-    #[arg(long, allow_hyphen_values = true)]
+    #[arg(long, allow_hyphen_values = true, conflicts_with = "resume")]
     pub(crate) search_box: Option<String>,
     /// Where the robots take off and land, ROW,COL (with --search-box).
-    #[arg(long, allow_hyphen_values = true)]
+    #[arg(long, allow_hyphen_values = true, conflicts_with = "resume")]
     pub(crate) launch: Option<String>,
     /// Seconds per scan (the paper's model: 0).
-    #[arg(long, default_value_t = 0.0)]
+    #[arg(long, default_value_t = 0.0, conflicts_with = "resume")]
     pub(crate) scan_time: f64,
     /// Seconds per move (the paper's model: 0).
-    #[arg(long, default_value_t = 0.0)]
+    #[arg(long, default_value_t = 0.0, conflicts_with = "resume")]
     pub(crate) move_time: f64,
     /// Where to write the SVG replay (default: --out with .svg).
     #[arg(long)]

@@ -665,6 +665,8 @@ fn roi_reports_bad_input_clearly() {
     assert!(String::from_utf8_lossy(&o.stderr).contains("at least one robot"));
     let o = stopscan(&["roi"]);
     assert!(String::from_utf8_lossy(&o.stderr).contains("--grid FILE or --random CELLS"));
+    let o = stopscan(&["roi", "--resume", "m.json", "--robots", "3"]);
+    assert!(String::from_utf8_lossy(&o.stderr).contains("cannot be used with '--robots"));
     let state = dir.join("not-a-state.json");
     std::fs::write(&state, "{\"format\": 3}").unwrap();
     let o = stopscan(&["roi", "--resume", state.to_str().unwrap()]);
