@@ -277,7 +277,10 @@ fn summary(w: &mut dyn Write, r: &GridRunRecord) -> std::io::Result<()> {
         ("Theorem 2 ratio (arbitrary shapes)", num(Some(b.bounds.theorem2_ratio), 3)),
         ("single-robot bound (8) (s)", opt(b.bounds.bound8_single, 3)),
         ("lawn mower baseline (s)", num(Some(b.bounds.lawn_mower), 3)),
-        ("tree depth d_max", b.bounds.d_max.to_string()),
+        (
+            "tree depth d_max (start's eccentricity)",
+            format!("{} ({})", b.bounds.d_max, b.eccentricity),
+        ),
         (
             "cells visited",
             format!("{} of {} ({})", m.visited_cells, r.cells, num(Some(m.coverage), 4)),

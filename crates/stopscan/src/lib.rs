@@ -20,6 +20,14 @@
 //! - Simulation with Monte Carlo: [`sim::corner`], [`world::corner`].
 //! - Paper reproductions: [`experiment::corner`].
 //!
+//! **Multi-robot exploration of a region of interest**
+//! - Regions (text grids, masks, shapes through their outer grid approximation, random),
+//!   static or drifting, and the camera sensor: [`world::grid`].
+//! - Algorithm 1 with R robots, the lawn-mowing search and batteries: [`strategy::grid`].
+//! - Lemma 1, Lemma 2, Theorems 1 and 2, bound (8), the lawn mower: [`offline::grid`].
+//! - Missions that resume, on the one team loop: [`sim::grid`], [`sim::Team`].
+//! - Fig. 7: [`experiment::grid`]; the frame classifier: [`algorithm::frame`].
+//!
 //! **General algorithms** — sparse MDPs with policy iteration ([`algorithm::mdp`]),
 //! Nelder–Mead ([`algorithm::nelder_mead`]).
 //!

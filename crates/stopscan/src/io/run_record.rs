@@ -301,6 +301,10 @@ pub struct GridBoundsRecord {
     /// The time over Lemma 2's lower bound on the optimum: an upper estimate of the
     /// competitive ratio (the optimum is at least that bound).
     pub competitive_ratio: Option<f64>,
+    /// The start's eccentricity in the region (4-neighbour steps to the farthest cell), for
+    /// comparison with `d_max`, the depth of the tree built (which Lemma 1 uses, as the paper
+    /// defines it; the tree can be deeper than shortest paths).
+    pub eccentricity: usize,
 }
 
 /// A whole grid run record (DESIGN.md's fields, plus `cells`).
@@ -415,6 +419,7 @@ impl GridRunRecord {
             bounds: GridBoundsRecord {
                 within_lemma1: paper_model.then_some(time <= bounds.lemma1_upper * (1.0 + 1e-12)),
                 competitive_ratio: (bounds.lemma2_lower > 0.0).then(|| time / bounds.lemma2_lower),
+                eccentricity: roi.distances().values().copied().max().unwrap_or(0) as usize,
                 bounds,
             },
             cells: roi.len(),
