@@ -15,7 +15,7 @@
 //! same policy without it. Removing it leaves a graph ordered by `(i, j)` lexicographically
 //! — every transition increases `i`, or keeps `i` and raises `j` to `i` — hence acyclic, and
 //! one backward sweep over `i = n..0` computes the optimal values exactly. The general
-//! [`policy_iteration`](crate::algorithm::mdp::policy_iteration) on the full MDP (self-loop
+//! [`policy_iteration`] on the full MDP (self-loop
 //! included) must and does agree.
 //!
 //! # Transition probabilities (the cut text)
