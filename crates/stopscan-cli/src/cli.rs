@@ -340,7 +340,7 @@ pub(crate) struct RoiArgs {
     /// settings come from STATE, so only --out, --svg and --format may be given with it.
     #[arg(long, value_name = "STATE")]
     pub(crate) resume: Option<PathBuf>,
-    /// Side of a cell, metres (masks and polygons).
+    /// Side of a cell, metres (for polygons, the grid's cell; otherwise the scale).
     #[arg(long, default_value_t = 1.0, conflicts_with = "resume")]
     pub(crate) cell_m: f64,
     /// Pixels per cell side, for masks.

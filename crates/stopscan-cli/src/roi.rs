@@ -23,8 +23,8 @@ use crate::output::{Table, num, write_json_atomic};
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 #[serde(tag = "kind", rename_all = "snake_case")]
 enum Source {
-    /// `GridRoi::random(cells, seed)`.
-    Random { cells: usize, seed: u64 },
+    /// `GridRoi::random(cells, seed)` with cells of `cell_size` metres.
+    Random { cells: usize, seed: u64, cell_size: f64 },
     /// A file (text grid, mask or polygon).
     File { path: PathBuf, cell_size: f64, cell_px: usize, start: Option<Cell> },
 }
@@ -46,7 +46,9 @@ const MISSION_FORMAT: &str = "stopscan-mission/1";
 
 fn load(source: &Source) -> anyhow::Result<GridRoi> {
     Ok(match source {
-        Source::Random { cells, seed } => GridRoi::random(*cells, *seed)?,
+        Source::Random { cells, seed, cell_size } => {
+            GridRoi::random(*cells, *seed)?.with_cell_size(*cell_size)?
+        }
         Source::File { path, cell_size, cell_px, start } => stopscan::io::grid::read_roi(
             path,
             &GridOptions { cell_size: *cell_size, cell_px: *cell_px, start: *start },
@@ -97,7 +99,7 @@ fn fresh(a: &RoiArgs, g: &Global) -> anyhow::Result<MissionFile> {
             cell_px: a.cell_px,
             start,
         },
-        (None, Some(c)) => Source::Random { cells: c, seed: g.seed },
+        (None, Some(c)) => Source::Random { cells: c, seed: g.seed, cell_size: a.cell_m },
         _ => bail!("give the region with --grid FILE or --random CELLS (or --resume STATE)"),
     };
     if !(a.roi_speed.is_finite() && a.roi_speed >= 0.0) {

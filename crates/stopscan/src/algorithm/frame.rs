@@ -4,7 +4,7 @@
 //! intensity 150, and dilated 7 times so that the gaps in grass fill with white; a region
 //! whose share of dark pixels reaches a threshold shows the (dark) region of interest.
 
-use image::{GrayImage, Luma};
+use image::GrayImage;
 use imageproc::distance_transform::Norm;
 
 /// The classifier's parameters. The defaults are the paper's, except the dark share, which
@@ -42,10 +42,11 @@ pub struct FrameVerdict {
 impl FrameClassifier {
     /// The binary image after thresholding and dilation (white 255 = background).
     pub fn binarise(&self, grey: &GrayImage) -> GrayImage {
-        let t = self.intensity_threshold;
-        let mut bin = GrayImage::from_fn(grey.width(), grey.height(), |x, y| {
-            Luma([if grey.get_pixel(x, y)[0] > t { 255 } else { 0 }])
-        });
+        let mut bin = imageproc::contrast::threshold(
+            grey,
+            self.intensity_threshold,
+            imageproc::contrast::ThresholdType::Binary,
+        );
         if self.dilations > 0 {
             bin = imageproc::morphology::dilate(&bin, Norm::LInf, self.dilations);
         }
@@ -89,6 +90,7 @@ impl FrameClassifier {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use image::Luma;
 
     /// A 3 × 3 frame of 30-pixel regions: dark where `roi[row][col]`, grass with dark gaps
     /// elsewhere.

@@ -232,6 +232,28 @@ impl GridRoi {
         Self::new(format!("random-{count}-seed{seed}"), inside, [0, 0], 1.0)
     }
 
+    /// The same cells with another cell size (metres).
+    ///
+    /// # Errors
+    /// [`InvalidRoi::CellSize`] if it is not a positive finite number.
+    pub fn with_cell_size(mut self, cell_size: f64) -> Result<Self, InvalidRoi> {
+        if !(cell_size.is_finite() && cell_size > 0.0) {
+            return Err(InvalidRoi::CellSize(cell_size));
+        }
+        if let Some(shape) = &self.shape {
+            // Scale the shape with the grid.
+            let k = cell_size / self.cell_size;
+            let rings: Vec<Vec<Point>> = shape
+                .rings()
+                .iter()
+                .map(|r| r.iter().map(|p| [p[0] * k, p[1] * k]).collect())
+                .collect();
+            self.shape = Domain::new(rings[0].clone(), rings[1..].to_vec()).ok();
+        }
+        self.cell_size = cell_size;
+        Ok(self)
+    }
+
     /// The outer grid approximation of an arbitrary region (section 5): every cell whose
     /// square meets the shape's interior. The grid is placed as in the field experiment, with
     /// the centre of cell `[0, 0]` at `start` (the start must be inside the shape); cells are
@@ -757,6 +779,3 @@ impl Arena for GridWorld {
         }
     }
 }
-
-/// The names of the four sides, in [`SIDES`](crate::protocol::grid::SIDES) order.
-pub const SIDE_NAMES: [&str; 4] = ["north", "east", "south", "west"];
