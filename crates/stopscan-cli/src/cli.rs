@@ -346,6 +346,9 @@ pub(crate) struct RoiArgs {
     /// Pixels per cell side, for masks.
     #[arg(long, default_value_t = 1, conflicts_with = "resume")]
     pub(crate) cell_px: usize,
+    /// For masks: the region is dark (grey below 128) instead of light.
+    #[arg(long, conflicts_with = "resume")]
+    pub(crate) invert_mask: bool,
     /// The start cell ROW,COL for masks and grids without S (default: the first region cell).
     #[arg(long, allow_hyphen_values = true, conflicts_with = "resume")]
     pub(crate) start: Option<String>,

@@ -26,7 +26,7 @@ enum Source {
     /// `GridRoi::random(cells, seed)` with cells of `cell_size` metres.
     Random { cells: usize, seed: u64, cell_size: f64 },
     /// A file (text grid, mask or polygon).
-    File { path: PathBuf, cell_size: f64, cell_px: usize, start: Option<Cell> },
+    File { path: PathBuf, cell_size: f64, cell_px: usize, start: Option<Cell>, invert: bool },
 }
 
 /// Everything a resumed mission needs (`--state`, `--resume`).
@@ -49,10 +49,15 @@ fn load(source: &Source) -> anyhow::Result<GridRoi> {
         Source::Random { cells, seed, cell_size } => {
             GridRoi::random(*cells, *seed)?.with_cell_size(*cell_size)?
         }
-        Source::File { path, cell_size, cell_px, start } => stopscan::io::grid::read_roi(
-            path,
-            &GridOptions { cell_size: *cell_size, cell_px: *cell_px, start: *start },
-        )?,
+        Source::File { path, cell_size, cell_px, start, invert } => {
+            let opts = GridOptions {
+                cell_size: *cell_size,
+                cell_px: *cell_px,
+                start: *start,
+                invert: *invert,
+            };
+            stopscan::io::grid::read_roi(path, &opts)?
+        }
     })
 }
 
@@ -98,6 +103,7 @@ fn fresh(a: &RoiArgs, g: &Global) -> anyhow::Result<MissionFile> {
             cell_size: a.cell_m,
             cell_px: a.cell_px,
             start,
+            invert: a.invert_mask,
         },
         (None, Some(c)) => Source::Random { cells: c, seed: g.seed, cell_size: a.cell_m },
         _ => bail!("give the region with --grid FILE or --random CELLS (or --resume STATE)"),

@@ -326,14 +326,61 @@ fn masks_load_with_their_cell_size() {
     std::fs::write(&path, bytes).unwrap();
     let one = read_roi(&path, &GridOptions::default()).unwrap();
     assert_eq!(one.len(), 8);
-    let two = read_roi(&path, &GridOptions { cell_px: 2, cell_size: 0.5, start: None }).unwrap();
+    let two =
+        read_roi(&path, &GridOptions { cell_px: 2, cell_size: 0.5, ..GridOptions::default() })
+            .unwrap();
     // Outer approximation: every 2 × 2 block touching the white block.
     assert_eq!(two.cells(), &[[0, 0], [0, 1], [0, 2], [1, 0], [1, 1], [1, 2]]);
     assert_eq!(two.cell_size(), 0.5);
+    // Inverted: the dark frame around the block is the region (16 cells, connected).
+    let dark = read_roi(&path, &GridOptions { invert: true, ..GridOptions::default() }).unwrap();
+    assert_eq!(dark.len(), 16);
     let e = read_roi(&path, &GridOptions { start: Some([9, 9]), ..GridOptions::default() })
         .unwrap_err();
     assert!(
         e.to_string().contains("m.pgm: the start cell (row 9, col 9) is not a region cell"),
         "{e}"
     );
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig::with_cases(24))]
+    /// Search, batteries and drift together: every cell visited, every robot back at the launch
+    /// cell, no flight between two swaps longer than a battery.
+    #[test]
+    fn field_missions_cover_and_land(
+        cells in 5usize..200,
+        seed in 0u64..100_000,
+        robots in 1usize..8,
+        offset in 1i32..6,
+        drift in 0.0f64..0.5,
+        heading in 0u32..360,
+    ) {
+        let roi = GridRoi::random(cells, seed).unwrap();
+        let [lo, hi] = roi.bounds();
+        let launch = [lo[0] - offset, lo[1] - offset];
+        let search = Search { launch, min: launch, max: [hi[0] + 1, hi[1] + 1] };
+        let drift = Drift { speed: drift, heading_deg: f64::from(heading) };
+        let mut world = GridWorld::without_root(roi.clone(), drift, GridSensor::Ideal, seed);
+        // A battery that can reach the far corner of the box and come back, with margin.
+        let tm = world.time_model(&CostModel::new(0.0, 0.0, 1.0).unwrap());
+        let far = tm.seconds(launch, [hi[0] + 1, hi[1] + 1]).unwrap()
+            .max(tm.seconds([hi[0] + 1, hi[1] + 1], launch).unwrap());
+        let battery = 3.0 * far + 6.0;
+        let mut m = Mission::new(&world, plan(robots, Some(battery), Some(search)), Recording::PATHS).unwrap();
+        m.run(&mut world, &mut NoObserver, 10_000_000).unwrap();
+        prop_assert!(m.failures().is_empty(), "{:?}", m.failures());
+        prop_assert_eq!(world.visited().len(), roi.len());
+        for r in &m.team.robots {
+            prop_assert!(r.done && r.at == launch);
+            let mut flight = 0.0;
+            for w in r.path.windows(2) {
+                flight += tm.seconds(w[0], w[1]).unwrap();
+                prop_assert!(flight <= battery + 1e-9);
+                if w[1] == launch {
+                    flight = 0.0;
+                }
+            }
+        }
+    }
 }

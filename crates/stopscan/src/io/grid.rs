@@ -1,10 +1,11 @@
 //! Region-of-interest files: a text grid, a PGM or PNG mask, or any polygon format (rasterised
 //! to its outer grid approximation, section 5 of the ROI paper).
 //!
-//! **Text grid**: one line per row, `#` a region cell, `.` outside, `S` the start cell (a
-//! region cell); lines starting with `;` are comments. **Mask**: a PGM (P2/P5) or PNG image
-//! whose pixels of grey level 128 or more are region; blocks of `cell_px` × `cell_px` pixels
-//! are one cell, which is a region cell when any of its pixels is (the outer approximation).
+//! **Text grid**: one line per row, `#` a region cell, `.` (or a space) outside, `S` the start
+//! cell (a region cell); lines starting with `;` are comments. **Mask**: a PGM (P2/P5) or PNG
+//! image whose pixels of grey level 128 or more are region (below 128 with `invert`); blocks of
+//! `cell_px` × `cell_px` pixels are one cell, which is a region cell when any of its pixels is
+//! (the outer approximation).
 
 use std::path::Path;
 
@@ -22,11 +23,13 @@ pub struct GridOptions {
     /// The start cell (row, col), for masks and text grids without `S`; default the first
     /// region cell in reading order.
     pub start: Option<Cell>,
+    /// For masks: the region is dark (grey below 128) instead of light.
+    pub invert: bool,
 }
 
 impl Default for GridOptions {
     fn default() -> Self {
-        Self { cell_size: 1.0, cell_px: 1, start: None }
+        Self { cell_size: 1.0, cell_px: 1, start: None, invert: false }
     }
 }
 
@@ -88,7 +91,7 @@ pub fn parse_text_grid(
             let c = [row, col as i32];
             match ch {
                 '#' => cells.push(c),
-                '.' => {}
+                '.' | ' ' => {}
                 'S' => {
                     if let Some((s, l)) = start {
                         return Err(LoadError::Syntax {
@@ -148,8 +151,10 @@ fn read_mask(path: &Path, name: &str, opts: &GridOptions) -> Result<GridRoi, Loa
     let mut cells = Vec::new();
     for r in 0..rows {
         for c in 0..cols {
-            let any = (r * k..((r + 1) * k).min(img.h))
-                .any(|y| (c * k..((c + 1) * k).min(img.w)).any(|x| img.px[y * img.w + x] >= 128));
+            let any = (r * k..((r + 1) * k).min(img.h)).any(|y| {
+                (c * k..((c + 1) * k).min(img.w))
+                    .any(|x| (img.px[y * img.w + x] >= 128) != opts.invert)
+            });
             if any {
                 cells.push([r as i32, c as i32]);
             }
