@@ -166,7 +166,7 @@ pub enum Flow {
 }
 
 /// The loop's state: every robot's track.
-#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[derive(Debug, Clone, Serialize, Deserialize)]
 pub struct Team<P, O> {
     /// The robots, by index.
     pub robots: Vec<Track<P, O>>,
@@ -187,13 +187,24 @@ pub struct Team<P, O> {
     group: Vec<usize>,
 }
 
+/// Two teams are equal when their tracks, steps and recording are (the scan caches are
+/// derived data).
+impl<P: PartialEq, O: PartialEq> PartialEq for Team<P, O> {
+    fn eq(&self, other: &Self) -> bool {
+        self.robots == other.robots
+            && self.steps == other.steps
+            && self.recording == other.recording
+    }
+}
+
 /// A clock as an ordered key: non-negative floats order as their bits do.
 fn key(clock: f64) -> u64 {
     clock.max(0.0).to_bits()
 }
 
-/// A place as a number, so that robots standing together sort together in the loop's queue
-/// (equal places give equal numbers; unequal places rarely do, and are told apart anyway).
+/// A place as a number, so that the loop compares places cheaply when it looks for robots
+/// standing together (equal places give equal numbers; unequal places rarely do, and are told
+/// apart anyway).
 pub trait Spot {
     /// The number.
     fn spot(&self) -> u64;
