@@ -372,6 +372,11 @@ pub(crate) struct RoiArgs {
     /// Seconds per move (the paper's model: 0).
     #[arg(long, default_value_t = 0.0, conflicts_with = "resume")]
     pub(crate) move_time: f64,
+    /// Write every move and scan to this file as it happens, one JSON object per line with the
+    /// robot's index (flushed per event). A resumed mission appends; the events of the step a
+    /// crash interrupted may then appear twice.
+    #[arg(long)]
+    pub(crate) trace: Option<PathBuf>,
     /// Where to write the SVG replay (default: --out with .svg).
     #[arg(long)]
     pub(crate) svg: Option<PathBuf>,

@@ -200,13 +200,35 @@ pub(crate) fn run(a: &RoiArgs, g: &Global) -> anyhow::Result<()> {
         indicatif::ProgressStyle::with_template("{spinner} {msg} {elapsed}")
             .unwrap_or_else(|_| indicatif::ProgressStyle::default_spinner()),
     );
+    let mut trace = match &a.trace {
+        Some(p) => {
+            // A fresh mission starts the trace; a resumed one carries it on.
+            let resuming = a.resume.is_some();
+            let f = std::fs::OpenOptions::new()
+                .create(true)
+                .write(true)
+                .append(resuming)
+                .truncate(!resuming)
+                .open(p)
+                .with_context(|| format!("cannot write {}", p.display()))?;
+            Some(stopscan::sim::JsonLinesTrace::new(std::io::BufWriter::new(f)))
+        }
+        None => None,
+    };
     let limit = 64 * (world.roi().len() as u64 + 64) * (file.mission.plan.robots as u64 + 1)
         + 4 * area_of(file.mission.plan.search);
     loop {
         if file.mission.team.steps >= limit {
             bail!("the mission did not finish within {limit} steps");
         }
-        let flow = file.mission.step(&mut world, &mut NoObserver)?;
+        let flow = match trace.as_mut() {
+            Some(t) => file.mission.step(&mut world, t)?,
+            None => file.mission.step(&mut world, &mut NoObserver)?,
+        };
+        if let Some(e) = trace.as_mut().and_then(|t| t.error.take()) {
+            let p = a.trace.as_deref().unwrap_or(Path::new("trace"));
+            return Err(anyhow::Error::from(e).context(format!("cannot write {}", p.display())));
+        }
         if let Some(p) = &state {
             file.mission.snapshot(&world);
             write_state(p, &file)?;
