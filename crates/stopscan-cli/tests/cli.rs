@@ -595,6 +595,7 @@ fn roi_explores_a_grid_and_writes_record_and_replay() {
     std::fs::create_dir_all(&dir).unwrap();
     let grid = PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("../../fixtures/roi/lake.txt");
     let out = dir.join("lake.json");
+    let trace = dir.join("lake.jsonl");
     let r = json(&[
         "roi",
         "--grid",
@@ -607,7 +608,18 @@ fn roi_explores_a_grid_and_writes_record_and_replay() {
         "90",
         "--out",
         out.to_str().unwrap(),
+        "--trace",
+        trace.to_str().unwrap(),
     ]);
+    let events: Vec<Value> = std::fs::read_to_string(&trace)
+        .unwrap()
+        .lines()
+        .map(|l| serde_json::from_str(l).unwrap())
+        .collect();
+    let moves = events.iter().filter(|e| e["event"] == "move").count() as u64;
+    assert_eq!(moves, r["metrics"]["moves"].as_u64().unwrap());
+    assert_eq!(events.last().unwrap()["event"], "finish");
+    assert!(events.iter().filter(|e| e["event"] != "finish").all(|e| e["robot"].is_u64()));
     assert_eq!(r["cells"], 53);
     assert_eq!(r["metrics"]["visited_cells"], 53);
     assert_eq!(r["metrics"]["all_home"], true);
