@@ -377,6 +377,10 @@ pub(crate) struct RoiArgs {
     /// crash interrupted may then appear twice.
     #[arg(long)]
     pub(crate) trace: Option<PathBuf>,
+    /// Leave each robot's cells, times and scans out of the run record (large regions: the
+    /// record of 10^6 cells and 64 robots is about 0.5 GB with them).
+    #[arg(long, conflicts_with = "resume")]
+    pub(crate) no_paths: bool,
     /// Where to write the SVG replay (default: --out with .svg).
     #[arg(long)]
     pub(crate) svg: Option<PathBuf>,

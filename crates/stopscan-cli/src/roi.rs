@@ -138,7 +138,8 @@ fn fresh(a: &RoiArgs, g: &Global) -> anyhow::Result<MissionFile> {
     };
     let roi = load(&source)?;
     let world = world_of(roi, drift, sensor.clone(), g.seed, search.is_some());
-    let mission = Mission::new(&world, plan, Recording::PATHS)?;
+    let recording = if a.no_paths { Recording::NONE } else { Recording::PATHS };
+    let mission = Mission::new(&world, plan, recording)?;
     let out = g.out.clone().unwrap_or_else(|| PathBuf::from("roi-run.json"));
     let svg = a.svg.clone().unwrap_or_else(|| out.with_extension("svg"));
     Ok(MissionFile {

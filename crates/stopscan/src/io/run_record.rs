@@ -239,7 +239,8 @@ pub struct GridRobotRecord {
     /// Robot id.
     pub id: usize,
     /// Cell centres flown through, metres, in the region's frame (cell `[r, c]` is at
-    /// `(c·s, −r·s)`); empty when paths were not recorded.
+    /// `(c·s, −r·s)`; add the drift times the time for the fixed frame); only the start when
+    /// paths were not recorded.
     pub path: Vec<Point>,
     /// The cells (row, col) in the order visited.
     pub cells: Vec<Cell>,
