@@ -154,7 +154,7 @@ fn bench_explore(a: &BenchArgs, g: &Global) -> anyhow::Result<()> {
 }
 
 fn bench_roi(a: &BenchArgs, g: &Global) -> anyhow::Result<()> {
-    use stopscan::offline::grid::{GridBounds, tree_depth};
+    use stopscan::offline::grid::GridBounds;
     use stopscan::sim::Recording;
     use stopscan::world::grid::{Drift, GridRoi, GridSensor, GridWorld};
     let cells = a.n.unwrap_or(1_000_000);
@@ -177,13 +177,7 @@ fn bench_roi(a: &BenchArgs, g: &Global) -> anyhow::Result<()> {
     let Some((world, m)) = last else { bail!("no run") };
     let visited = world.visited().len();
     let home = m.team.robots.iter().all(|r| r.done && r.at == roi.start());
-    let b = GridBounds::new(
-        roi.len(),
-        roi.bounds(),
-        tree_depth(&world.records()),
-        a.robots,
-        world.time_model(&cost),
-    );
+    let b = GridBounds::of_world(&world, a.robots, &cost);
     let time = m.team.makespan();
     let t = Instant::now();
     let rows = stopscan::experiment::grid::fig7_rows(stopscan::experiment::ROI_TRIALS, g.seed)?;

@@ -216,8 +216,7 @@ pub(crate) fn run(a: &RoiArgs, g: &Global) -> anyhow::Result<()> {
         }
         None => None,
     };
-    let limit = 64 * (world.roi().len() as u64 + 64) * (file.mission.plan.robots as u64 + 1)
-        + 4 * area_of(file.mission.plan.search);
+    let limit = file.mission.step_limit(&world);
     loop {
         if file.mission.team.steps >= limit {
             bail!("the mission did not finish within {limit} steps");
@@ -272,10 +271,6 @@ pub(crate) fn run(a: &RoiArgs, g: &Global) -> anyhow::Result<()> {
         bail!("the mission did not complete: {}", record.failures.join("; "));
     }
     Ok(())
-}
-
-fn area_of(search: Option<Search>) -> u64 {
-    search.map_or(0, |s| ((s.max[0] - s.min[0] + 1) as u64) * ((s.max[1] - s.min[1] + 1) as u64))
 }
 
 fn summary(w: &mut dyn Write, r: &GridRunRecord) -> std::io::Result<()> {

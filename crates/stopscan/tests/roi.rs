@@ -4,7 +4,7 @@
 use proptest::prelude::*;
 use stopscan::geometry::Domain;
 use stopscan::io::grid::{GridOptions, read_roi};
-use stopscan::offline::grid::{GridBounds, tree_depth};
+use stopscan::offline::grid::GridBounds;
 use stopscan::protocol::CostModel;
 use stopscan::protocol::grid::{CellSet, TimeModel};
 use stopscan::sim::grid::{Mission, MissionPlan, Search, explore};
@@ -40,8 +40,7 @@ fn check(world: &GridWorld, m: &Mission) -> (f64, GridBounds) {
     for c in roi.cells() {
         assert!(visited.contains(c), "cell {c:?} was never visited");
     }
-    let b =
-        GridBounds::new(roi.len(), roi.bounds(), tree_depth(&world.records()), m.plan.robots, tm);
+    let b = GridBounds::of_world(world, m.plan.robots, &cost);
     assert!(
         makespan <= b.lemma1_upper * (1.0 + 1e-12),
         "time {makespan} exceeds Lemma 1's {} (C = {}, R = {}, d_max = {})",

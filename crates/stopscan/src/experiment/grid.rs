@@ -9,7 +9,7 @@ use rayon::prelude::*;
 use serde::{Deserialize, Serialize};
 
 use super::{ExperimentError, Reproduction, Row, sample_seed};
-use crate::offline::grid::{GridBounds, tree_depth};
+use crate::offline::grid::GridBounds;
 use crate::protocol::CostModel;
 use crate::render::{LineChart, Series};
 use crate::sim::Recording;
@@ -68,15 +68,7 @@ fn trial(
     let cost = CostModel { scan_time: 0.0, move_time: 0.0, speed: 1.0 };
     let m = explore(&mut world, robots, cost, Recording::NONE)
         .map_err(|e| ExperimentError::Model(e.to_string()))?;
-    let roi = world.roi();
-    let b = GridBounds::new(
-        roi.len(),
-        roi.bounds(),
-        tree_depth(&world.records()),
-        robots,
-        world.time_model(&cost),
-    );
-    Ok((m.team.makespan(), b))
+    Ok((m.team.makespan(), GridBounds::of_world(&world, robots, &cost)))
 }
 
 /// Runs one sweep point.

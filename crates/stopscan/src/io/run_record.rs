@@ -372,8 +372,7 @@ impl GridRunRecord {
         let visited = world.visited().len();
         let mapped = mission.plan.map.then(|| mission.marks.positive());
         let counts = roi.approximation_counts();
-        let d_max = crate::offline::grid::tree_depth(&world.records());
-        let bounds = GridBounds::new(roi.len(), roi.bounds(), d_max, mission.plan.robots, tm);
+        let bounds = GridBounds::of_world(world, mission.plan.robots, &cost);
         let paper_model = cost.scan_time == 0.0
             && cost.move_time == 0.0
             && swaps.iter().all(|&w| w == 0)

@@ -5,7 +5,9 @@
 
 use serde::{Deserialize, Serialize};
 
+use crate::protocol::CostModel;
 use crate::protocol::grid::{Cell, CellMap, Record, TimeModel};
+use crate::world::grid::GridWorld;
 
 /// ⌊log₂ R⌋ for R ≥ 1 (0 for R = 0).
 pub fn floor_log2(r: usize) -> u32 {
@@ -176,6 +178,14 @@ impl GridBounds {
             bound8_single: (robots == 1).then(|| bound8_single(cells, v)),
             lawn_mower: lawn_mower(bounds, robots, times),
         }
+    }
+
+    /// All bounds for the region of `world` explored by `robots` robots under `cost`, with the
+    /// d_max of the tree recorded on its cells.
+    pub fn of_world(world: &GridWorld, robots: usize, cost: &CostModel) -> Self {
+        let roi = world.roi();
+        let d_max = tree_depth(&world.records());
+        Self::new(roi.len(), roi.bounds(), d_max, robots, world.time_model(cost))
     }
 }
 

@@ -294,31 +294,6 @@ pub mod sorted_map {
     }
 }
 
-/// Serialises a cell set as a sorted list (see [`sorted_map`]).
-pub mod sorted_set {
-    use super::{Cell, CellSet};
-    use serde::{Deserialize, Deserializer, Serialize, Serializer};
-
-    /// Writes the set sorted.
-    ///
-    /// # Errors
-    /// The serialiser's.
-    pub fn serialize<S: Serializer>(m: &CellSet, s: S) -> Result<S::Ok, S::Error> {
-        let mut v: Vec<&Cell> = m.iter().collect();
-        v.sort_unstable();
-        v.serialize(s)
-    }
-
-    /// Reads what [`serialize`] wrote.
-    ///
-    /// # Errors
-    /// The deserialiser's.
-    pub fn deserialize<'de, D: Deserializer<'de>>(d: D) -> Result<CellSet, D::Error> {
-        let v: Vec<Cell> = Vec::deserialize(d)?;
-        Ok(v.into_iter().collect())
-    }
-}
-
 #[cfg(test)]
 mod tests {
     use super::*;

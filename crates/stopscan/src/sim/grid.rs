@@ -189,10 +189,7 @@ impl Mission {
         observer: &mut dyn Observer<Cell, GridObservation>,
     ) -> Result<Flow, SimError<Cell>> {
         let cost = self.plan.cost;
-        if !self.plan.map {
-            return self.team.step(world, &cost, &mut self.robots, observer);
-        }
-        let marks = Some(&mut self.marks);
+        let marks = self.plan.map.then_some(&mut self.marks);
         self.team.step(world, &cost, &mut self.robots, &mut Mapper { marks, next: observer })
     }
 
@@ -208,10 +205,7 @@ impl Mission {
         limit: u64,
     ) -> Result<Flow, SimError<Cell>> {
         let cost = self.plan.cost;
-        if !self.plan.map {
-            return self.team.run(world, &cost, &mut self.robots, observer, limit);
-        }
-        let marks = Some(&mut self.marks);
+        let marks = self.plan.map.then_some(&mut self.marks);
         self.team.run(world, &cost, &mut self.robots, &mut Mapper { marks, next: observer }, limit)
     }
 
@@ -225,6 +219,17 @@ impl Mission {
     /// sensor and seed) with the mission's records and visited cells restored.
     pub fn restore(&self, world: GridWorld) -> GridWorld {
         world.with_records(&self.boards).with_visited(self.visited.iter().copied())
+    }
+
+    /// A generous cap on the steps of this mission in `world`, against a strategy that never
+    /// ends: 64 steps per cell and robot, plus the search box four times over.
+    pub fn step_limit(&self, world: &GridWorld) -> u64 {
+        let cells = world.roi().len() as u64 + 64;
+        let search = self.plan.search.map_or(0, |s| {
+            let side = |k: usize| u64::from((s.max[k] - s.min[k] + 1).unsigned_abs());
+            side(0) * side(1)
+        });
+        64 * cells * (self.plan.robots as u64 + 1) + 4 * search
     }
 
     /// Battery swaps per robot.
@@ -255,7 +260,7 @@ pub fn explore(
 ) -> Result<Mission, GridRunError> {
     let plan = MissionPlan { robots, cost, battery_s: None, search: None, map: false };
     let mut m = Mission::new(world, plan, recording)?;
-    let limit = 64 * (world.roi().len() as u64 + 16) * (robots as u64 + 1);
+    let limit = m.step_limit(world);
     m.run(world, &mut NoObserver, limit)?;
     Ok(m)
 }

@@ -6,7 +6,7 @@ pub mod grid;
 pub mod polygon;
 mod team;
 
-pub use team::{Agent, Arena, Flow, Leg, Member, Recording, SimError, Spot, Team, Track};
+pub use team::{Agent, Arena, Flow, Leg, Recording, SimError, Spot, Team, Track};
 
 use std::ops::ControlFlow;
 

@@ -2,7 +2,7 @@
 
 use serde::{Deserialize, Serialize};
 
-use super::{Agent, Arena, Flow, Leg, Member, Observer, SimError, Team};
+use super::{Agent, Arena, Flow, Leg, Observer, SimError, Team};
 use crate::kernel::Point;
 use crate::protocol::polygon::PolygonObservation;
 use crate::protocol::{Action, CostModel, Tally, TimeBreakdown};
@@ -47,7 +47,7 @@ impl Arena for PolygonArena<'_> {
     fn scan(&mut self, _robot: usize, at: &Point, _clock: f64) -> Option<PolygonObservation> {
         self.0.scan(*at).ok()
     }
-    fn meet(&mut self, _at: &Point, _clock: f64, _members: &[Member<Point>]) {}
+    fn meet(&mut self, _at: &Point, _clock: f64, _group: &[usize]) {}
     fn leave(&mut self, _at: &Point, (): ()) {}
 }
 

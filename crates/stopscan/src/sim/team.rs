@@ -24,15 +24,6 @@ pub struct Leg {
     pub seconds: f64,
 }
 
-/// One robot of a group that meets at a place.
-#[derive(Debug, Clone, PartialEq)]
-pub struct Member<P> {
-    /// The robot's index in the team.
-    pub robot: usize,
-    /// Where it stood before, if it moved here.
-    pub came_from: Option<P>,
-}
-
 /// What the loop needs from a world: moves, scans, and where robots meet.
 pub trait Arena {
     /// A place a robot can stand on.
@@ -55,13 +46,8 @@ pub trait Arena {
     ) -> Option<Leg>;
     /// The sensor of robot `robot` at `at`, or `None` if it cannot scan there.
     fn scan(&mut self, robot: usize, at: &Self::Place, clock: f64) -> Option<Self::Observation>;
-    /// `members` stand together at `at` at time `clock`.
-    fn meet(
-        &mut self,
-        at: &Self::Place,
-        clock: f64,
-        members: &[Member<Self::Place>],
-    ) -> Self::Context;
+    /// Robots `group` (indices, ascending) stand together at `at` at time `clock`.
+    fn meet(&mut self, at: &Self::Place, clock: f64, group: &[usize]) -> Self::Context;
     /// A robot leaves `note` at `at`.
     fn leave(&mut self, at: &Self::Place, note: Self::Note);
 }
@@ -118,8 +104,6 @@ pub struct Track<P, O> {
     pub clock: f64,
     /// Where it stands.
     pub at: P,
-    /// Where it stood before its last move.
-    pub came_from: Option<P>,
     /// The feedback it gets next.
     pub feedback: Feedback<P, O>,
     /// Whether it has answered done.
@@ -230,7 +214,6 @@ impl<P: Clone + PartialEq + Debug + Spot, O: Clone> Team<P, O> {
             .map(|s| Track {
                 clock: 0.0,
                 at: s.clone(),
-                came_from: None,
                 feedback: Feedback::Start(s.clone()),
                 done: false,
                 tally: Tally::default(),
@@ -324,10 +307,6 @@ impl<P: Clone + PartialEq + Debug + Spot, O: Clone> Team<P, O> {
         let group = std::mem::take(&mut self.group);
         self.steps += 1;
         let (clock, at) = (self.robots[group[0]].clock, self.robots[group[0]].at.clone());
-        let members: Vec<Member<P>> = group
-            .iter()
-            .map(|&i| Member { robot: i, came_from: self.robots[i].came_from.clone() })
-            .collect();
         let mut notes: Vec<W::Note> = Vec::new();
         for &i in &group {
             if let Some(n) = agents[i].report(&self.robots[i].feedback)
@@ -339,7 +318,7 @@ impl<P: Clone + PartialEq + Debug + Spot, O: Clone> Team<P, O> {
         for n in notes.drain(..) {
             world.leave(&at, n);
         }
-        let context = world.meet(&at, clock, &members);
+        let context = world.meet(&at, clock, &group);
         let mut stop = false;
         // Robots of a group often fly the same leg: price it once.
         let mut last_leg: Option<(P, Leg)> = None;
@@ -370,7 +349,7 @@ impl<P: Clone + PartialEq + Debug + Spot, O: Clone> Team<P, O> {
                     r.tally.moves += 1;
                     r.tally.distance += leg.metres;
                     r.clock += cost.move_time + leg.seconds;
-                    r.came_from = Some(std::mem::replace(&mut r.at, to.clone()));
+                    r.at = to.clone();
                     if self.recording.paths {
                         r.path.push(to.clone());
                     }

@@ -167,10 +167,6 @@ impl<S: GridStrategy> GridStrategy for Battery<S> {
     }
 
     fn act(&mut self, feedback: &GridFeedback, context: &GridContext) -> Action<Cell> {
-        if self.capacity.is_none() {
-            self.inner_acted = true;
-            return self.inner.act(feedback, context);
-        }
         self.inner_acted = false;
         if let GridFeedback::Start(c) = feedback {
             self.home.get_or_insert(*c);

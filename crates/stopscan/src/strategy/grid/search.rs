@@ -198,10 +198,6 @@ impl<S: GridStrategy + Clone> GridStrategy for LawnMower<S> {
     }
 
     fn note(&mut self) -> Option<&Record> {
-        if matches!(self.phase, Phase::Inner) || self.phase == Phase::Homing {
-            self.inner.note()
-        } else {
-            None
-        }
+        if matches!(self.phase, Phase::Inner | Phase::Homing) { self.inner.note() } else { None }
     }
 }

@@ -15,7 +15,17 @@ use crate::protocol::grid::{
     VertexState, neighbour,
 };
 use crate::protocol::{CostModel, grid::TimeModel};
-use crate::sim::{Arena, Leg, Member};
+use crate::sim::{Arena, Leg};
+
+/// Bit `k` of a bitmap.
+fn bit(bits: &[u64], k: usize) -> bool {
+    bits[k / 64] >> (k % 64) & 1 == 1
+}
+
+/// Sets bit `k` of a bitmap.
+fn set_bit(bits: &mut [u64], k: usize) {
+    bits[k / 64] |= 1 << (k % 64);
+}
 
 /// Why a region of interest was rejected.
 #[derive(Debug, Clone, PartialEq, thiserror::Error)]
@@ -101,7 +111,7 @@ impl GridRoi {
         };
         for i in 0..roi.cells.len() {
             let k = roi.index(roi.cells[i]).unwrap_or(0);
-            roi.bits[k / 64] |= 1 << (k % 64);
+            set_bit(&mut roi.bits, k);
         }
         if !roi.contains(start) {
             return Err(InvalidRoi::StartOutside(start));
@@ -112,10 +122,10 @@ impl GridRoi {
         let mut reached = 0;
         while let Some(c) = stack.pop() {
             let Some(k) = roi.index(c) else { continue };
-            if seen[k / 64] >> (k % 64) & 1 == 1 || !roi.contains(c) {
+            if bit(&seen, k) || !roi.contains(c) {
                 continue;
             }
-            seen[k / 64] |= 1 << (k % 64);
+            set_bit(&mut seen, k);
             reached += 1;
             stack.extend((0..4).map(|i| neighbour(c, i)));
         }
@@ -124,7 +134,7 @@ impl GridRoi {
                 .cells
                 .iter()
                 .copied()
-                .find(|&c| roi.index(c).is_some_and(|k| seen[k / 64] >> (k % 64) & 1 == 0))
+                .find(|&c| roi.index(c).is_some_and(|k| !bit(&seen, k)))
                 .unwrap_or(start);
             return Err(InvalidRoi::Disconnected { cell, reached, total: roi.cells.len() });
         }
@@ -141,7 +151,7 @@ impl GridRoi {
 
     /// Whether `c` is a region cell.
     pub fn contains(&self, c: Cell) -> bool {
-        self.index(c).is_some_and(|k| self.bits[k / 64] >> (k % 64) & 1 == 1)
+        self.index(c).is_some_and(|k| bit(&self.bits, k))
     }
 
     /// The name (file stem or generator).
@@ -602,18 +612,9 @@ pub struct GridWorld {
 impl GridWorld {
     /// A world whose root record is on the start cell.
     pub fn new(roi: GridRoi, drift: Drift, sensor: GridSensor, seed: u64) -> Self {
-        let bits = roi.bits.len();
-        let mut boards = Boards::new(&roi);
-        boards.set(roi.start(), Record { root: true, ..Record::default() });
-        Self {
-            roi,
-            drift,
-            sensor,
-            seed,
-            unit_times: std::cell::Cell::default(),
-            boards,
-            visited: vec![0; bits],
-        }
+        let mut w = Self::without_root(roi, drift, sensor, seed);
+        w.boards.set(w.roi.start(), Record { root: true, ..Record::default() });
+        w
     }
 
     /// The same world, with its records replaced (to resume a mission).
@@ -639,7 +640,7 @@ impl GridWorld {
 
     /// Whether some robot has stood on region cell `c`.
     pub fn was_visited(&self, c: Cell) -> bool {
-        self.roi.index(c).is_some_and(|k| self.visited[k / 64] >> (k % 64) & 1 == 1)
+        self.roi.index(c).is_some_and(|k| bit(&self.visited, k))
     }
 
     /// Restores the visited cells (to resume a mission).
@@ -655,7 +656,7 @@ impl GridWorld {
         if let Some(k) = self.roi.index(c)
             && self.roi.contains(c)
         {
-            self.visited[k / 64] |= 1 << (k % 64);
+            set_bit(&mut self.visited, k);
         }
     }
 
@@ -752,8 +753,8 @@ impl Arena for GridWorld {
         Some(GridObservation { cell: *at, frames })
     }
 
-    fn meet(&mut self, at: &Cell, _clock: f64, members: &[Member<Cell>]) -> GridContext {
-        let present = members.iter().map(|m| m.robot).collect();
+    fn meet(&mut self, at: &Cell, _clock: f64, group: &[usize]) -> GridContext {
+        let present = group.to_vec();
         self.mark_visited(*at);
         let record = self.boards.get(*at);
         let neighbours = std::array::from_fn(|i| self.boards.tree_state(neighbour(*at, i)));
