@@ -86,12 +86,12 @@ pub(crate) enum CornerCommand {
         #[arg(long, default_value_t = 6)]
         count: usize,
     },
-    /// Globally optimal scan points for K intermediate scans, anywhere in the plane.
+    /// Globally optimal scan points for at most K intermediate scans, anywhere in the plane.
     Optimal {
         /// Distance to the corner in units of v·τ.
         #[arg(long)]
         distance: f64,
-        /// Number of intermediate scans.
+        /// The most intermediate scans (at most 12; the search takes seconds per scan).
         #[arg(long)]
         scans: usize,
     },

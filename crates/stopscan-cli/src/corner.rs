@@ -7,7 +7,7 @@ use anyhow::{Context, bail};
 use serde::Serialize;
 use serde_json::json;
 use stopscan::experiment::corner::{self as exp, LineupOptions};
-use stopscan::offline::corner::{expected, limit_ratio, optimal::optimal_scans, worst_case};
+use stopscan::offline::corner::{expected, limit_ratio, optimal::optimal_scans_with, worst_case};
 use stopscan::protocol::CostModel;
 use stopscan::protocol::corner::{AngleDistribution, CornerSetup, LastStep, Route};
 use stopscan::render::{LineChart, Series, write_chart, write_policy_image};
@@ -125,14 +125,23 @@ fn optimal(d: f64, k: usize, g: &Global) -> anyhow::Result<()> {
     if k > 12 {
         bail!("--scans must be at most 12 (the optimisation is over 2·scans coordinates), got {k}");
     }
-    let o = optimal_scans(d, k, g.seed);
+    let bar = crate::output::spinner();
+    let o = optimal_scans_with(d, k, g.seed, &mut |j, r| {
+        bar.set_message(format!("searched {j} of {k} points: best ratio {r:.6}"));
+    });
+    bar.finish_and_clear();
     let value = json!({
-        "distance": o.distance, "scans": o.scans, "ratio": o.ratio, "scan_points": o.scan_points,
+        "distance": o.distance, "max_scans": o.max_scans, "scans": o.scans, "ratio": o.ratio,
+        "scan_points": o.scan_points, "ratio_by_scans": o.ratio_by_scans,
         "circle_ratio": o.circle_ratio, "circle_scans": o.circle_scans,
         "improvement_over_circle": o.circle_ratio - o.ratio,
     });
     emit(g, &value, true, |w| {
-        writeln!(w, "global optimum at d = {d} with {k} intermediate scans: ratio {:.6}", o.ratio)?;
+        writeln!(
+            w,
+            "global optimum at d = {d} with at most {k} intermediate scans: ratio {:.6} with {} (exact for the points below)",
+            o.ratio, o.scans
+        )?;
         writeln!(
             w,
             "circle strategy at d = {d}: ratio {:.6} with {} scans",
@@ -140,9 +149,9 @@ fn optimal(d: f64, k: usize, g: &Global) -> anyhow::Result<()> {
         )?;
         let mut t = Table::new(&["scan", "x", "y"]);
         for (i, p) in o.scan_points.iter().enumerate() {
-            t.row(vec![(i + 1).to_string(), num(Some(p[0]), 6), num(Some(p[1]), 6)]);
+            t.row(vec![(i + 1).to_string(), num(Some(p[0]), 9), num(Some(p[1]), 9)]);
         }
-        t.row(vec!["corner".into(), num(Some(d), 6), num(Some(0.0), 6)]);
+        t.row(vec!["corner".into(), num(Some(d), 9), num(Some(0.0), 9)]);
         t.write(w)
     })
 }

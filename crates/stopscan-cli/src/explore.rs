@@ -47,12 +47,7 @@ struct Progress {
 
 impl Progress {
     fn new() -> Self {
-        let bar = indicatif::ProgressBar::new_spinner();
-        bar.set_style(
-            indicatif::ProgressStyle::with_template("{spinner} {msg} {elapsed}")
-                .unwrap_or_else(|_| indicatif::ProgressStyle::default_spinner()),
-        );
-        Self { bar, scans: 0, metres: 0.0 }
+        Self { bar: crate::output::spinner(), scans: 0, metres: 0.0 }
     }
 }
 

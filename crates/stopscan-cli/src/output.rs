@@ -55,6 +55,18 @@ impl Table {
     }
 }
 
+/// A spinner showing a message and the elapsed time on a terminal (hidden otherwise); it
+/// ticks by itself, so it moves while a long computation runs.
+pub(crate) fn spinner() -> indicatif::ProgressBar {
+    let bar = indicatif::ProgressBar::new_spinner();
+    bar.set_style(
+        indicatif::ProgressStyle::with_template("{spinner} {msg} {elapsed}")
+            .unwrap_or_else(|_| indicatif::ProgressStyle::default_spinner()),
+    );
+    bar.enable_steady_tick(std::time::Duration::from_millis(200));
+    bar
+}
+
 /// Formats a float with `digits` decimals, `-` for missing or non-finite values.
 pub(crate) fn num(v: Option<f64>, digits: usize) -> String {
     match v {

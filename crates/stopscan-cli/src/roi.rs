@@ -196,11 +196,7 @@ pub(crate) fn run(a: &RoiArgs, g: &Global) -> anyhow::Result<()> {
     if file.mission.team.steps > 0 {
         world = file.mission.restore(world);
     }
-    let bar = indicatif::ProgressBar::new_spinner();
-    bar.set_style(
-        indicatif::ProgressStyle::with_template("{spinner} {msg} {elapsed}")
-            .unwrap_or_else(|_| indicatif::ProgressStyle::default_spinner()),
-    );
+    let bar = crate::output::spinner();
     let mut trace = match &a.trace {
         Some(p) => {
             // A fresh mission starts the trace; a resumed one carries it on.

@@ -84,73 +84,94 @@ fn simplex_run(
     p: &NelderMeadParams,
 ) -> (Vec<f64>, f64) {
     let n = x0.len();
-    let mut pts: Vec<Vec<f64>> = vec![x0.to_vec()];
+    // The simplex, vertex `i` at `pts[i·n..(i+1)·n]`; `order` lists vertices best first.
+    let mut pts: Vec<f64> = Vec::with_capacity((n + 1) * n);
+    pts.extend_from_slice(x0);
     for i in 0..n {
-        let mut x = x0.to_vec();
-        x[i] += step * x[i].abs().max(1.0);
-        pts.push(x);
+        let start = pts.len();
+        pts.extend_from_slice(x0);
+        pts[start + i] += step * x0[i].abs().max(1.0);
     }
-    let mut vals: Vec<f64> = pts.iter().map(|x| f(x)).collect();
+    let mut vals: Vec<f64> = pts.chunks_exact(n.max(1)).take(n + 1).map(f).collect();
     let mut evals = n + 1;
-    let point = |c: &[f64], w: &[f64], t: f64| -> Vec<f64> {
-        c.iter().zip(w).map(|(a, b)| a + t * (b - a)).collect()
+    let mut order: Vec<usize> = (0..=n).collect();
+    let (mut centroid, mut reflected, mut trial) = (vec![0.0; n], vec![0.0; n], vec![0.0; n]);
+    // `out = c + t·(w − c)`.
+    let towards = |out: &mut [f64], c: &[f64], w: &[f64], t: f64| {
+        for ((o, a), b) in out.iter_mut().zip(c).zip(w) {
+            *o = a + t * (b - a);
+        }
     };
     while evals < p.max_evaluations {
-        let mut idx: Vec<usize> = (0..=n).collect();
-        idx.sort_by(|&a, &b| vals[a].total_cmp(&vals[b]));
-        pts = idx.iter().map(|&i| pts[i].clone()).collect();
-        vals = idx.iter().map(|&i| vals[i]).collect();
-        let spread = vals[n] - vals[0];
-        let diameter = pts[1..]
+        order.sort_by(|&a, &b| vals[a].total_cmp(&vals[b]));
+        let (best, worst) = (order[0], order[n]);
+        let vertex = |i: usize| i * n..(i + 1) * n;
+        let spread = vals[worst] - vals[best];
+        let diameter = order[1..]
             .iter()
-            .map(|x| x.iter().zip(&pts[0]).map(|(a, b)| (a - b).abs()).fold(0.0, f64::max))
+            .map(|&i| {
+                pts[vertex(i)]
+                    .iter()
+                    .zip(&pts[vertex(best)])
+                    .map(|(a, b)| (a - b).abs())
+                    .fold(0.0, f64::max)
+            })
             .fold(0.0, f64::max);
-        if spread <= p.f_tolerance * (1.0 + vals[0].abs()) && diameter <= p.x_tolerance {
+        if spread <= p.f_tolerance * (1.0 + vals[best].abs()) && diameter <= p.x_tolerance {
             break;
         }
         if diameter <= 1e-15 {
             break;
         }
-        let mut centroid = vec![0.0; n];
-        for x in &pts[..n] {
-            for (c, v) in centroid.iter_mut().zip(x) {
+        centroid.fill(0.0);
+        for &i in &order[..n] {
+            for (c, v) in centroid.iter_mut().zip(&pts[vertex(i)]) {
                 *c += v / n as f64;
             }
         }
-        let reflected = point(&centroid, &pts[n], -1.0);
+        towards(&mut reflected, &centroid, &pts[vertex(worst)], -1.0);
         let fr = f(&reflected);
         evals += 1;
-        if fr < vals[0] {
-            let expanded = point(&centroid, &pts[n], -2.0);
-            let fe = f(&expanded);
+        if fr < vals[best] {
+            towards(&mut trial, &centroid, &pts[vertex(worst)], -2.0);
+            let fe = f(&trial);
             evals += 1;
             if fe < fr {
-                (pts[n], vals[n]) = (expanded, fe);
+                pts[vertex(worst)].copy_from_slice(&trial);
+                vals[worst] = fe;
             } else {
-                (pts[n], vals[n]) = (reflected, fr);
+                pts[vertex(worst)].copy_from_slice(&reflected);
+                vals[worst] = fr;
             }
-        } else if fr < vals[n - 1] {
-            (pts[n], vals[n]) = (reflected, fr);
+        } else if fr < vals[order[n - 1]] {
+            pts[vertex(worst)].copy_from_slice(&reflected);
+            vals[worst] = fr;
         } else {
-            let (towards, fw) =
-                if fr < vals[n] { (&reflected, fr) } else { (&pts[n].clone(), vals[n]) };
-            let contracted = point(&centroid, towards, 0.5);
-            let fc = f(&contracted);
+            let fw = if fr < vals[worst] {
+                towards(&mut trial, &centroid, &reflected, 0.5);
+                fr
+            } else {
+                towards(&mut trial, &centroid, &pts[vertex(worst)], 0.5);
+                vals[worst]
+            };
+            let fc = f(&trial);
             evals += 1;
             if fc < fw {
-                (pts[n], vals[n]) = (contracted, fc);
+                pts[vertex(worst)].copy_from_slice(&trial);
+                vals[worst] = fc;
             } else {
-                let best = pts[0].clone();
-                for i in 1..=n {
-                    pts[i] = point(&best, &pts[i], 0.5);
-                    vals[i] = f(&pts[i]);
+                let anchor = pts[vertex(best)].to_vec();
+                for &i in &order[1..] {
+                    towards(&mut trial, &anchor, &pts[vertex(i)], 0.5);
+                    pts[vertex(i)].copy_from_slice(&trial);
+                    vals[i] = f(&trial);
                 }
                 evals += n;
             }
         }
     }
     let i = (0..=n).min_by(|&a, &b| vals[a].total_cmp(&vals[b])).unwrap_or(0);
-    (pts[i].clone(), vals[i])
+    (pts[i * n..(i + 1) * n].to_vec(), vals[i])
 }
 
 #[cfg(test)]
