@@ -5,11 +5,12 @@ use std::path::{Path, PathBuf};
 
 use anyhow::{Context, bail};
 use stopscan::generate::{self, Instance};
-use stopscan::geometry::Domain;
+use stopscan::geometry::{Domain, Frame};
 use stopscan::io::run_record::RunRecord;
 use stopscan::kernel::Point;
 use stopscan::offline::polygon::ReferenceLimits;
 use stopscan::protocol::CostModel;
+use stopscan::sim::polygon::Reframe;
 use stopscan::world::polygon::PolygonWorld;
 
 use crate::cli::{ExploreArgs, Family, Format, GenerateArgs, Global};
@@ -22,12 +23,16 @@ const OFFICE: &str = include_str!("../../../fixtures/office.geojson");
 struct Outcome {
     record: RunRecord,
     svg: String,
+    /// Why the run was ended before the strategy was done; the record is the run so far.
+    failure: Option<anyhow::Error>,
 }
 
 /// One exploration to run.
 struct Job<'a> {
     name: &'a str,
     domain: &'a Domain,
+    /// The domain's frame: `domain` and `start` are local, results are reported in the input's.
+    frame: Frame,
     start: Point,
     strategy: &'a str,
     cost: CostModel,
@@ -78,36 +83,48 @@ fn explore(j: &Job) -> anyhow::Result<Outcome> {
         bail!("--range must be a positive number of metres, got {r}");
     }
     let world = PolygonWorld::with_range(j.domain.clone(), j.range)?;
+    let input = |p: Point| j.frame.to_input(p);
     if world.scan(j.start).is_err() {
-        bail!("the start ({}, {}) is outside the free space", j.start[0], j.start[1]);
+        let s = input(j.start);
+        bail!("the start ({}, {}) is outside the free space", s[0], s[1]);
     }
     let mut progress = Progress::new();
-    let run = match j.trace {
+    let result = match j.trace {
         None => {
-            stopscan::sim::polygon::run(&world, j.start, &j.cost, strat.as_mut(), &mut progress)?
+            stopscan::sim::polygon::run(&world, j.start, &j.cost, strat.as_mut(), &mut progress)
         }
         Some(path) => {
             let file = std::fs::File::create(path)
                 .with_context(|| format!("cannot write {}", path.display()))?;
             let mut trace = stopscan::sim::JsonLinesTrace::new(std::io::BufWriter::new(file));
-            let run = {
-                let mut all = stopscan::sim::Fanout(vec![&mut trace, &mut progress]);
-                stopscan::sim::polygon::run(&world, j.start, &j.cost, strat.as_mut(), &mut all)?
+            let result = {
+                let mut reframed = Reframe { inner: &mut trace, frame: j.frame };
+                let mut all = stopscan::sim::Fanout(vec![&mut reframed, &mut progress]);
+                stopscan::sim::polygon::run(&world, j.start, &j.cost, strat.as_mut(), &mut all)
             };
             if let Some(e) = trace.error {
                 return Err(
                     anyhow::Error::from(e).context(format!("cannot write {}", path.display()))
                 );
             }
-            run
+            result
         }
     };
+    let (run, failure) = match result {
+        Ok(run) => (run, None),
+        Err(e) => (*e.partial, Some(anyhow::Error::from(e.error.map_places(input)))),
+    };
+    // A run cut short is not measured against the offline references (they take time, and a
+    // ratio of an unfinished run means nothing); its record says why it ended.
+    let limits = if failure.is_some() { ReferenceLimits::NONE } else { j.limits };
     let refs =
-        stopscan::offline::polygon::references(world.visibility(), j.start, j.range, j.limits)?;
+        stopscan::offline::polygon::references(world.visibility(), j.start, j.range, limits)?;
     let regions: Vec<_> = run.scans.iter().map(|s| s.region.clone()).collect();
     let svg = stopscan::render::exploration_svg(j.domain, &regions, &run.path);
-    let record = RunRecord::polygon(j.name, &world, j.strategy, &j.cost, &run, &refs, j.seed);
-    Ok(Outcome { record, svg })
+    let mut record = RunRecord::polygon(j.name, &world, j.strategy, &j.cost, &run, &refs, j.seed)
+        .in_frame(&j.frame);
+    record.error = failure.as_ref().map(ToString::to_string);
+    Ok(Outcome { record, svg, failure })
 }
 
 fn summary(w: &mut dyn Write, o: &RunRecord) -> std::io::Result<()> {
@@ -169,14 +186,17 @@ fn finish(
     let mut w = stdout.lock();
     if g.format == Format::Json {
         writeln!(w, "{}", serde_json::to_string_pretty(&o.record)?)?;
-        return Ok(());
+    } else {
+        summary(&mut w, &o.record)?;
+        writeln!(w, "wrote {}", json_path.display())?;
+        if let Some(p) = svg_path {
+            writeln!(w, "wrote {}", p.display())?;
+        }
     }
-    summary(&mut w, &o.record)?;
-    writeln!(w, "wrote {}", json_path.display())?;
-    if let Some(p) = svg_path {
-        writeln!(w, "wrote {}", p.display())?;
+    match &o.failure {
+        Some(e) => bail!("{e}; the record of the run so far is in {}", json_path.display()),
+        None => Ok(()),
     }
-    Ok(())
 }
 
 pub(crate) fn main_job(g: &Global) -> anyhow::Result<()> {
@@ -185,6 +205,7 @@ pub(crate) fn main_job(g: &Global) -> anyhow::Result<()> {
     let o = explore(&Job {
         name: "office (built-in)",
         domain: &env.domain,
+        frame: env.frame,
         start,
         strategy: "depth_first",
         cost: CostModel::default(),
@@ -291,7 +312,7 @@ pub(crate) fn run(a: &ExploreArgs, g: &Global) -> anyhow::Result<()> {
     }
     let env = stopscan::io::read_environment(&a.env)?;
     let start = match &a.start {
-        Some(s) => parse_point(s)?,
+        Some(s) => env.frame.to_local(parse_point(s)?),
         None => match env.queries.first() {
             Some(&p) => p,
             None => PolygonWorld::new(env.domain.clone())?.interior_point(),
@@ -301,6 +322,7 @@ pub(crate) fn run(a: &ExploreArgs, g: &Global) -> anyhow::Result<()> {
     let o = explore(&Job {
         name,
         domain: &env.domain,
+        frame: env.frame,
         start,
         strategy: &a.strategy,
         cost: cost_of(a.scan_time, a.move_time, a.speed)?,

@@ -6,7 +6,9 @@ use std::time::Instant;
 use anyhow::{Context, bail};
 use serde_json::json;
 use stopscan::algorithm::visibility::range::{RangeRegion, clip};
-use stopscan::algorithm::visibility::{BoundaryPiece, Visibility, VisibilityRegion, expansion};
+use stopscan::algorithm::visibility::{
+    BoundaryPiece, Visibility, VisibilityError, VisibilityRegion, expansion,
+};
 use stopscan::kernel::Point;
 
 use crate::cli::{BenchArgs, Format, Global, ImportArgs, VisibilityArgs};
@@ -61,6 +63,8 @@ fn region_json(r: &VisibilityRegion) -> serde_json::Value {
 pub(crate) fn run(a: &VisibilityArgs, g: &Global) -> anyhow::Result<()> {
     let range = check_range(a.range, a.arc_tolerance)?;
     let env = stopscan::io::read_environment(&a.env)?;
+    let frame = env.frame;
+    let input = |p: Point| frame.to_input(p);
     let vis = Visibility::new(env.domain)?;
     if let Some(file) = &a.queries {
         let points = stopscan::io::read_points(file)?;
@@ -69,12 +73,12 @@ pub(crate) fn run(a: &VisibilityArgs, g: &Global) -> anyhow::Result<()> {
         let mut scratch = expansion::Scratch::default();
         let mut region = VisibilityRegion::default();
         for (i, &q) in points.iter().enumerate() {
-            vis.query_into(q, &mut scratch, &mut region).with_context(|| {
+            vis.query_into(frame.to_local(q), &mut scratch, &mut region).with_context(|| {
                 format!("{}:{}: query ({}, {})", file.display(), i + 1, q[0], q[1])
             })?;
             let v = match range {
-                Some((r, t)) => range_json(&clip(&region, r), t),
-                None => region_json(&region),
+                Some((r, t)) => range_json(&clip(&region, r).mapped(input), t),
+                None => region_json(&region.mapped(input)),
             };
             writeln!(w, "{}", serde_json::to_string(&v)?)?;
         }
@@ -84,15 +88,22 @@ pub(crate) fn run(a: &VisibilityArgs, g: &Global) -> anyhow::Result<()> {
         bail!("give the viewpoint with --at X,Y or many with --queries FILE")
     };
     let q = parse_point(at)?;
-    let r = vis.query(q)?;
+    let r = vis.query(frame.to_local(q)).map_err(|e| match e {
+        // The message names the viewpoint as given.
+        VisibilityError::Outside(..) => VisibilityError::Outside(q[0], q[1]),
+        e => e,
+    })?;
     if let Some((radius, tol)) = range {
         let rr = clip(&r, radius);
         if g.format == Format::Svg {
-            let approx =
-                VisibilityRegion { viewpoint: q, polygon: rr.to_polygon(tol), boundary: vec![] };
+            let approx = VisibilityRegion {
+                viewpoint: r.viewpoint,
+                polygon: rr.to_polygon(tol),
+                boundary: vec![],
+            };
             return write_svg(g, &vis, &approx);
         }
-        let value = range_json(&rr, tol);
+        let value = range_json(&rr.mapped(input), tol);
         return emit(g, &value, true, |w| {
             writeln!(
                 w,
@@ -108,6 +119,7 @@ pub(crate) fn run(a: &VisibilityArgs, g: &Global) -> anyhow::Result<()> {
     if g.format == Format::Svg {
         return write_svg(g, &vis, &r);
     }
+    let r = r.mapped(input);
     let value = region_json(&r);
     emit(g, &value, true, |w| {
         writeln!(
@@ -156,7 +168,9 @@ pub(crate) fn bench(a: &BenchArgs, g: &Global) -> anyhow::Result<()> {
     let Some(path) = &a.env else { bail!("bench visibility needs --env FILE") };
     let env = stopscan::io::read_environment(path)?;
     let queries = match &a.queries {
-        Some(f) => stopscan::io::read_points(f)?,
+        Some(f) => {
+            stopscan::io::read_points(f)?.into_iter().map(|q| env.frame.to_local(q)).collect()
+        }
         None => env.queries.clone(),
     };
     if queries.is_empty() {
@@ -226,8 +240,8 @@ pub(crate) fn import(a: &ImportArgs, g: &Global) -> anyhow::Result<()> {
     } else {
         stopscan::io::read_environment(&a.file)?
     };
-    let start = start.or_else(|| env.queries.first().copied());
-    let geo = stopscan::io::text_formats::to_geojson(&env.domain, start);
+    let start = start.map(|s| env.frame.to_local(s)).or_else(|| env.queries.first().copied());
+    let geo = stopscan::io::text_formats::to_geojson_in(&env.domain, start, &env.frame);
     crate::output::write_json_atomic(&a.output, &geo)?;
     let d = &env.domain;
     let value = json!({

@@ -5,7 +5,7 @@ use std::path::{Path, PathBuf};
 use stopscan::algorithm::visibility::Visibility;
 use stopscan::geometry::Location;
 use stopscan::io::ros_map::{RosMapOptions, read};
-use stopscan::io::{read_environment, text_formats::to_geojson};
+use stopscan::io::{read_environment, text_formats::to_geojson_in};
 
 fn fixture(p: &str) -> PathBuf {
     PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("../../fixtures").join(p)
@@ -26,25 +26,32 @@ fn turtlebot_world_becomes_a_valid_domain_and_round_trips() {
     )
     .unwrap();
     let d = &env.domain;
+    // The map is in the frame of its grid; its origin is the YAML's.
+    assert_eq!(env.frame.origin, [-10.0, -10.0]);
+    let start = env.frame.to_local([-2.0, -0.5]);
+    assert_eq!(env.queries, vec![start]);
     assert!(d.holes().len() >= 5, "the pillars are holes: {}", d.holes().len());
     assert!(d.area() > 10.0 && d.area() < 40.0, "area {}", d.area());
-    assert_eq!(d.locate([-2.0, -0.5]), Location::Interior);
+    assert_eq!(d.locate(start), Location::Interior);
     // The simplification stays within one cell of the traced boundary: every vertex lies on
     // the 5 cm grid of the map.
     for p in d.rings().iter().flatten() {
         for v in p {
-            let k = (v + 10.0) / 0.05;
+            let k = v / 0.05;
             assert!((k - k.round()).abs() < 1e-6, "{v}");
         }
     }
     let vis = Visibility::new(d.clone()).unwrap();
-    assert!(vis.query([-2.0, -0.5]).unwrap().area() > 1.0);
-    // GeoJSON round trip.
+    assert!(vis.query(start).unwrap().area() > 1.0);
+    // GeoJSON round trip, in the map's own coordinates.
     let dir = temp("tb3");
     let path = dir.join("tb3.geojson");
-    std::fs::write(&path, to_geojson(d, Some([-2.0, -0.5])).to_string()).unwrap();
+    std::fs::write(&path, to_geojson_in(d, Some(start), &env.frame).to_string()).unwrap();
     let back = read_environment(&path).unwrap();
-    assert_eq!(&back.domain, d);
+    assert!(back.frame.is_identity());
+    let moved: Vec<Vec<[f64; 2]>> =
+        d.rings().iter().map(|r| r.iter().map(|&p| env.frame.to_input(p)).collect()).collect();
+    assert_eq!(back.domain.rings(), &moved[..]);
     assert_eq!(back.queries, vec![[-2.0, -0.5]]);
 }
 

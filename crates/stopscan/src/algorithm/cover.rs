@@ -12,14 +12,16 @@
 
 use crate::algorithm::visibility::{BoundaryPiece, VisibilityRegion};
 use crate::geometry::signed_area_of;
-use crate::kernel::{Point, RingSide, orient_sign, ring_side};
+use crate::kernel::{Point, RingSide, magnitude, orient_sign, ring_side, rounding};
 
 /// Parameter intervals `[t0, t1] ⊂ [0, 1]`, sorted and disjoint.
 pub type Intervals = Vec<[f64; 2]>;
 
 /// Gaps between covered intervals shorter than this (in segment parameter) are closed: they
 /// come from rounding, where the constructed vertices of different polygons (rays meeting
-/// walls, each rounded once) meet the segment at what is one point in exact arithmetic.
+/// walls, each rounded once) meet the segment at what is one point in exact arithmetic. Far
+/// from the origin the rounding grows with the coordinates, and [`tolerance`] raises the
+/// threshold to [`rounding`] of them.
 pub const GAP_TOLERANCE: f64 = 1e-9;
 
 /// Appends to `out` the parameter intervals of segment `a → b` covered on its right side by
@@ -95,9 +97,10 @@ pub fn side_cover(a: Point, b: Point, poly: &[Point], bounds: [Point; 2], out: &
             match ring_side(poly, m) {
                 RingSide::Inside => true,
                 RingSide::Outside => false,
-                // Rounding put the middle on an edge the segment crosses: step to the side.
+                // Rounding put the middle on an edge the segment crosses: step to the side, by
+                // more than the rounding of the coordinates.
                 RingSide::Boundary => {
-                    let e = 1e-9;
+                    let e = 1e-9_f64.max(4.0 * rounding(magnitude(&[a, b])) / len2.sqrt());
                     ring_side(poly, [m[0] + e * dy, m[1] - e * dx]) == RingSide::Inside
                 }
             }
@@ -150,15 +153,21 @@ pub const RANGE_GAP: f64 = 1e-3;
 pub const RANGE_CHORD_TOLERANCE: f64 = 1e-4;
 
 /// The gap tolerance (in the piece's own parameter) for a frontier piece of a region seen
-/// from `viewpoint`: [`GAP_TOLERANCE`] for windows, [`RANGE_GAP`]·R for range chords.
+/// from `viewpoint`: [`GAP_TOLERANCE`] for windows, [`RANGE_GAP`]·R for range chords, and for
+/// both at least the [`rounding`] of the coordinates involved over the piece's length.
 pub fn tolerance(viewpoint: Point, piece: &BoundaryPiece) -> f64 {
+    let (from, to) = piece.ends();
+    let len = (to[0] - from[0]).hypot(to[1] - from[1]);
+    if len <= 0.0 {
+        return 1.0;
+    }
+    let floor = GAP_TOLERANCE.max(rounding(magnitude(&[viewpoint, from, to])) / len);
     match *piece {
-        BoundaryPiece::Frontier { from, to } => {
+        BoundaryPiece::Frontier { .. } => {
             let r = (from[0] - viewpoint[0]).hypot(from[1] - viewpoint[1]);
-            let len = (to[0] - from[0]).hypot(to[1] - from[1]);
-            if len > 0.0 { (RANGE_GAP * r / len).max(GAP_TOLERANCE) } else { 1.0 }
+            (RANGE_GAP * r / len).max(floor)
         }
-        _ => GAP_TOLERANCE,
+        _ => floor,
     }
 }
 
@@ -178,15 +187,17 @@ pub fn open_windows(regions: &[VisibilityRegion], inside: impl Fn(Point) -> bool
 }
 
 /// A point just beyond the middle of every uncovered part of every window of `regions` (a
-/// millionth of the window's length past it): points no region sees, or on the domain's
-/// boundary where a window grazes it. Used to refine witness sets.
+/// millionth of the window's length past it, and more than the coordinates' [`rounding`]):
+/// points no region sees, or on the domain's boundary where a window grazes it. Used to
+/// refine witness sets.
 pub fn open_window_points(regions: &[VisibilityRegion]) -> Vec<Point> {
     let mut out = Vec::new();
     for_each_window(regions, |a, b, tol, iv| {
         let (dx, dy) = (b[0] - a[0], b[1] - a[1]);
+        let e = 1e-6_f64.max(4.0 * rounding(magnitude(&[a, b])) / dx.hypot(dy));
         for [g0, g1] in gaps(iv, tol) {
             let t = 0.5 * (g0 + g1);
-            out.push([a[0] + t * dx + 1e-6 * dy, a[1] + t * dy - 1e-6 * dx]);
+            out.push([a[0] + t * dx + e * dy, a[1] + t * dy - e * dx]);
         }
     });
     out

@@ -271,7 +271,7 @@ pub(crate) fn ring_orientation(ring: &[Point]) -> i8 {
 
 /// Twice-free, shifted shoelace area (positive for counter-clockwise).
 pub(crate) fn signed_area(ring: &[Point]) -> f64 {
-    let o = ring[0];
+    let Some(&o) = ring.first() else { return 0.0 };
     let mut s = 0.0;
     for i in 1..ring.len().saturating_sub(1) {
         let (a, b) = (ring[i], ring[i + 1]);

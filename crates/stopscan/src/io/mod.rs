@@ -7,7 +7,7 @@ pub mod ros_map;
 pub mod run_record;
 pub mod text_formats;
 
-use crate::geometry::InvalidEnvironment;
+use crate::geometry::{Frame, InvalidEnvironment};
 
 /// Why an environment file could not be loaded.
 #[derive(Debug, thiserror::Error)]
@@ -49,16 +49,52 @@ pub enum LoadError {
     },
 }
 
-/// An environment and the query points it may carry.
+/// An environment and the query points it may carry, in the local frame computations run
+/// in ([`Frame`]).
 #[derive(Debug, Clone)]
 pub struct Environment {
-    /// The validated domain.
+    /// The validated domain (local frame).
     pub domain: crate::geometry::Domain,
-    /// Query points carried by the file (the benchmark format has them).
+    /// Query points carried by the file (the benchmark format has them; GeoJSON its start),
+    /// in the local frame.
     pub queries: Vec<crate::kernel::Point>,
+    /// The file's frame: `input = local + frame.origin`. Points the user gives are moved into
+    /// the local frame with [`Frame::to_local`], and results back with [`Frame::to_input`].
+    pub frame: Frame,
 }
 
-/// Reads an environment file, choosing the format by its content.
+impl Environment {
+    /// An environment in its input's own frame.
+    pub fn new(domain: crate::geometry::Domain, queries: Vec<crate::kernel::Point>) -> Self {
+        Self { domain, queries, frame: Frame::IDENTITY }
+    }
+
+    /// The same environment moved next to the origin when its coordinates lie far from it
+    /// ([`Frame::for_points`]): georeferenced maps. The translation is exact for the domain.
+    ///
+    /// # Errors
+    /// [`InvalidEnvironment`] only if the translated domain does not validate, which an exact
+    /// translation rules out.
+    pub fn localised(self) -> Result<Self, InvalidEnvironment> {
+        let frame = Frame::for_points(self.domain.rings().iter().flatten());
+        if frame.is_identity() {
+            return Ok(self);
+        }
+        let mut rings: Vec<Vec<crate::kernel::Point>> = self
+            .domain
+            .rings()
+            .iter()
+            .map(|r| r.iter().map(|&p| frame.to_local(p)).collect())
+            .collect();
+        let outer = rings.remove(0);
+        let domain = crate::geometry::Domain::new(outer, rings)?;
+        let queries = self.queries.iter().map(|&q| frame.to_local(q)).collect();
+        Ok(Self { domain, queries, frame })
+    }
+}
+
+/// Reads an environment file, choosing the format by its content, in its local frame
+/// ([`Environment::localised`]; a ROS map is always read in the frame of its grid).
 ///
 /// GeoJSON, WKT, `.pol` ([`text_formats`]), the visibility benchmark format
 /// ([`bench_format`]) and ROS `map_server` YAML ([`ros_map`]).
@@ -66,6 +102,12 @@ pub struct Environment {
 /// # Errors
 /// [`LoadError`] naming the file, the place and the problem.
 pub fn read_environment(path: &std::path::Path) -> Result<Environment, LoadError> {
+    read_in_input_frame(path)?
+        .localised()
+        .map_err(|source| LoadError::Invalid { file: path.display().to_string(), source })
+}
+
+fn read_in_input_frame(path: &std::path::Path) -> Result<Environment, LoadError> {
     let text = std::fs::read_to_string(path)
         .map_err(|source| LoadError::Io { file: path.display().to_string(), source })?;
     let first =
@@ -77,7 +119,7 @@ pub fn read_environment(path: &std::path::Path) -> Result<Environment, LoadError
     }
     if first.starts_with("OUTER") {
         let e = bench_format::parse(&text, &file)?;
-        return Ok(Environment { domain: e.domain, queries: e.queries });
+        return Ok(Environment::new(e.domain, e.queries));
     }
     if first.starts_with('{') || matches!(ext.as_deref(), Some("geojson" | "json")) {
         return text_formats::parse_geojson(&text, &file);

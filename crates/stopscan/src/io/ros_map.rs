@@ -228,18 +228,24 @@ pub fn read(path: &Path, opts: &RosMapOptions) -> Result<Environment, LoadError>
             p < y.free_thresh
         })
         .collect();
+    // The map is traced in the frame of its grid (cell corners at multiples of the
+    // resolution), whatever its origin: coordinates of a georeferenced origin would round
+    // grid lines together.
+    let frame = crate::geometry::Frame::at(y.origin);
+    let start = opts.start.map(|s| frame.to_local(s));
     let cell_of = |p: Point| -> Option<usize> {
-        let c = ((p[0] - y.origin[0]) / y.resolution).floor();
-        let r = h as f64 - 1.0 - ((p[1] - y.origin[1]) / y.resolution).floor();
+        let c = (p[0] / y.resolution).floor();
+        let r = h as f64 - 1.0 - (p[1] / y.resolution).floor();
         (c >= 0.0 && r >= 0.0 && (c as usize) < w && (r as usize) < h)
             .then(|| r as usize * w + c as usize)
     };
-    let seed = match opts.start {
+    let seed = match start {
         Some(s) => {
+            let given = frame.to_input(s);
             let c = cell_of(s)
-                .ok_or_else(|| err(path, 0, format!("the start {s:?} is outside the map")))?;
+                .ok_or_else(|| err(path, 0, format!("the start {given:?} is outside the map")))?;
             if !free[c] {
-                return Err(err(path, 0, format!("the start {s:?} is not in a free cell")));
+                return Err(err(path, 0, format!("the start {given:?} is not in a free cell")));
             }
             Some(c)
         }
@@ -257,9 +263,9 @@ pub fn read(path: &Path, opts: &RosMapOptions) -> Result<Environment, LoadError>
             break region;
         }
     };
-    let rings = trace(&region, w, h, y.origin, y.resolution);
+    let rings = trace(&region, w, h, y.resolution);
     let domain = simplify_until_valid(path, &rings, y.resolution)?;
-    Ok(Environment { domain, queries: opts.start.into_iter().collect() })
+    Ok(Environment { domain, queries: start.into_iter().collect(), frame })
 }
 
 /// The 4-connected free component containing `seed`, or the largest.
@@ -369,8 +375,9 @@ fn unpinch(free: &mut [bool], region: &[bool], w: usize, h: usize) -> bool {
     changed
 }
 
-/// The region's boundary along cell edges, free space on the left, collinear vertices dropped.
-fn trace(region: &[bool], w: usize, h: usize, origin: [f64; 2], res: f64) -> Vec<Vec<Point>> {
+/// The region's boundary along cell edges (in the grid's frame: the map's lower left corner at
+/// the origin), free space on the left, collinear vertices dropped.
+fn trace(region: &[bool], w: usize, h: usize, res: f64) -> Vec<Vec<Point>> {
     // Vertex (i, j): column line i in 0..=w, row line j in 0..=h (j = 0 at the top).
     let vid = |i: usize, j: usize| j * (w + 1) + i;
     let mut next = vec![u32::MAX; (w + 1) * (h + 1)];
@@ -402,9 +409,7 @@ fn trace(region: &[bool], w: usize, h: usize, origin: [f64; 2], res: f64) -> Vec
             }
         }
     }
-    let to_world = |v: usize| {
-        [origin[0] + (v % (w + 1)) as f64 * res, origin[1] + (h - v / (w + 1)) as f64 * res]
-    };
+    let to_world = |v: usize| [(v % (w + 1)) as f64 * res, (h - v / (w + 1)) as f64 * res];
     let mut rings = Vec::new();
     for s in 0..next.len() {
         if next[s] == u32::MAX {

@@ -26,6 +26,10 @@ pub struct EnvironmentInfo {
     pub reflex_vertices: usize,
     /// Free area, m².
     pub free_area: f64,
+    /// The input's frame when computations ran in a local one: every point of the record is
+    /// in the input's coordinates, `input = local + frame_origin` (absent when the two agree).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub frame_origin: Option<Point>,
 }
 
 /// `"strategy"`.
@@ -138,9 +142,32 @@ pub struct RunRecord {
     pub seed: u64,
     /// The library version.
     pub stopscan_version: String,
+    /// Why the run was ended before the strategy was done (the record is then the run so
+    /// far); absent for a complete run.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub error: Option<String>,
 }
 
 impl RunRecord {
+    /// The same record with every point moved from the local `frame` to the input's
+    /// coordinates (distances, areas and times do not change).
+    #[must_use]
+    pub fn in_frame(mut self, frame: &crate::geometry::Frame) -> Self {
+        if frame.is_identity() {
+            return self;
+        }
+        for r in &mut self.robots {
+            for p in &mut r.path {
+                *p = frame.to_input(*p);
+            }
+            for s in &mut r.scans {
+                s.at = frame.to_input(s.at);
+            }
+        }
+        self.environment.frame_origin = Some(frame.origin);
+        self
+    }
+
     /// The record of a single-robot polygon run in `world`, measured against `refs`.
     pub fn polygon(
         name: &str,
@@ -170,6 +197,7 @@ impl RunRecord {
                 holes: domain.holes().len(),
                 reflex_vertices: r,
                 free_area: free,
+                frame_origin: None,
             },
             strategy: StrategyInfo { name: strategy.into(), params: serde_json::json!({}) },
             cost_model: *cost,
@@ -210,6 +238,7 @@ impl RunRecord {
             },
             seed,
             stopscan_version: crate::VERSION.into(),
+            error: None,
         }
     }
 }

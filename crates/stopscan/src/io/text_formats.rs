@@ -104,7 +104,7 @@ pub fn parse_geojson(text: &str, file: &str) -> Result<Environment, LoadError> {
         .and_then(|p| p.get("start"))
         .and_then(Value::as_array)
         .and_then(|a| Some([a.first()?.as_f64()?, a.get(1)?.as_f64()?]));
-    Ok(Environment { domain, queries: start.into_iter().collect() })
+    Ok(Environment::new(domain, start.into_iter().collect()))
 }
 
 /// Parses WKT `POLYGON` text.
@@ -189,7 +189,7 @@ pub fn parse_wkt(text: &str, file: &str) -> Result<Environment, LoadError> {
             _ => return Err(syntax(file, line_at(pos), "expected ',' or ')' after a ring")),
         }
     }
-    Ok(Environment { domain: build(file, rings)?, queries: vec![] })
+    Ok(Environment::new(build(file, rings)?, vec![]))
 }
 
 /// Parses a `.pol` file (one line of whitespace-separated tokens).
@@ -212,7 +212,7 @@ pub fn parse_pol(text: &str, file: &str) -> Result<Environment, LoadError> {
             format!("{} unexpected tokens after the polygon", c.list.len() - c.k),
         ));
     }
-    Ok(Environment { domain: build(file, rings)?, queries: vec![] })
+    Ok(Environment::new(build(file, rings)?, vec![]))
 }
 
 struct Tokens<'a> {
@@ -272,15 +272,28 @@ impl<'a> Tokens<'a> {
 /// The domain as a GeoJSON Feature (rings closed, outer counter-clockwise, holes clockwise),
 /// with the optional start point as the `start` property.
 pub fn to_geojson(domain: &Domain, start: Option<Point>) -> Value {
+    to_geojson_in(domain, start, &crate::geometry::Frame::IDENTITY)
+}
+
+/// [`to_geojson`] for a domain and start in the local `frame` of their input: the output is in
+/// the input's coordinates (bit for bit, for a frame chosen by [`Frame::for_points`]).
+///
+/// [`Frame::for_points`]: crate::geometry::Frame::for_points
+pub fn to_geojson_in(
+    domain: &Domain,
+    start: Option<Point>,
+    frame: &crate::geometry::Frame,
+) -> Value {
     let rings: Vec<Vec<Point>> = domain
         .rings()
         .iter()
         .map(|r| {
-            let mut v = r.clone();
-            v.push(r[0]);
+            let mut v: Vec<Point> = r.iter().map(|&p| frame.to_input(p)).collect();
+            v.push(v[0]);
             v
         })
         .collect();
+    let start = start.map(|s| frame.to_input(s));
     let mut props = serde_json::Map::new();
     if let Some(s) = start {
         props.insert("start".into(), serde_json::json!(s));

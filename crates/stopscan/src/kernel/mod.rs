@@ -65,6 +65,21 @@ fn orient_value(a: Point, b: Point, c: Point) -> f64 {
     )
 }
 
+/// How far a point constructed in floating point (a ray meeting a wall, a cut along a segment)
+/// may lie from its exact position when the coordinates involved are at most `scale` in
+/// magnitude: 64 units in the last place of `scale`. Every tolerance of the strategies and
+/// the window tests is at least this, so they stay meaningful whatever the coordinates' origin
+/// (a map in UTM coordinates, say, rounds its constructed points a million times coarser than
+/// the same map near the origin).
+pub fn rounding(scale: f64) -> f64 {
+    64.0 * f64::EPSILON * scale
+}
+
+/// The largest coordinate magnitude of `points` (the scale for [`rounding`]).
+pub fn magnitude<'a>(points: impl IntoIterator<Item = &'a Point>) -> f64 {
+    points.into_iter().flatten().fold(0.0, |m, v| m.max(v.abs()))
+}
+
 /// Whether a coordinate is finite and in the predicates' exact range.
 pub fn coordinate_is_safe(v: f64) -> bool {
     v.is_finite() && (v == 0.0 || (MIN_ABS..=MAX_ABS).contains(&v.abs()))

@@ -14,3 +14,11 @@ pub struct PolygonObservation {
     /// The visibility region seen.
     pub region: VisibilityRegion,
 }
+
+impl PolygonObservation {
+    /// The same observation with every point moved by `f` (a change of frame).
+    #[must_use]
+    pub fn mapped(&self, f: impl Fn(Point) -> Point) -> Self {
+        Self { at: f(self.at), region: self.region.mapped(f) }
+    }
+}

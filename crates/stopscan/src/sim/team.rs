@@ -50,6 +50,12 @@ pub trait Arena {
     fn meet(&mut self, at: &Self::Place, clock: f64, group: &[usize]) -> Self::Context;
     /// A robot leaves `note` at `at`.
     fn leave(&mut self, at: &Self::Place, note: Self::Note);
+    /// Whether a scan at a place always sees the same (a static world with an exact sensor):
+    /// then a second scan where any scan already stood sees nothing new, and the loop ends
+    /// the run as [`SimError::NoProgress`] instead of letting a strategy repeat itself.
+    fn is_static(&self) -> bool {
+        false
+    }
 }
 
 /// A strategy as the loop drives it.
@@ -95,6 +101,57 @@ pub enum SimError<P: Debug> {
     /// The team did not finish within the step limit.
     #[error("strategy {0} did not finish within {1} steps")]
     TooLong(String, u64),
+    /// A strategy asked to scan, in a static world, where a scan already stood: it would see
+    /// nothing new, so it has stopped making progress.
+    #[error(
+        "strategy {strategy} (robot {robot}) asked to scan at {at:?}, where scan {earlier} already stood: it would see nothing new, so the run was ended after {scans} scans"
+    )]
+    NoProgress {
+        /// The strategy.
+        strategy: String,
+        /// The robot.
+        robot: usize,
+        /// Where it asked to scan again.
+        at: P,
+        /// The number (from 1, over the team) of the earlier scan there.
+        earlier: u64,
+        /// Scans taken by the team so far.
+        scans: u64,
+    },
+}
+
+impl<P: Debug> SimError<P> {
+    fn blocked(strategy: &str, robot: usize, from: P, to: P) -> Self {
+        Self::Blocked { strategy: strategy.into(), robot, from, to }
+    }
+
+    /// The same error with its places moved by `f` (a change of frame).
+    pub fn map_places<Q: Debug>(self, f: impl Fn(P) -> Q) -> SimError<Q> {
+        match self {
+            Self::Blocked { strategy, robot, from, to } => {
+                SimError::Blocked { strategy, robot, from: f(from), to: f(to) }
+            }
+            Self::TooLong(s, n) => SimError::TooLong(s, n),
+            Self::NoProgress { strategy, robot, at, earlier, scans } => {
+                SimError::NoProgress { strategy, robot, at: f(at), earlier, scans }
+            }
+        }
+    }
+}
+
+/// Records a scan at `at` as the team's scan `scans + 1`, or, when a scan already stood there,
+/// returns its number and `scans`.
+fn revisit<P: Clone + PartialEq + Spot>(
+    scanned: &mut std::collections::HashMap<u64, Vec<(P, u64)>>,
+    scans: u64,
+    at: &P,
+) -> Option<(u64, u64)> {
+    let here = scanned.entry(at.spot()).or_default();
+    if let Some(&(_, earlier)) = here.iter().find(|(p, _)| p == at) {
+        return Some((earlier, scans));
+    }
+    here.push((at.clone(), scans + 1));
+    None
 }
 
 /// One robot's state in the loop and what it has done so far.
@@ -169,6 +226,12 @@ pub struct Team<P, O> {
     /// The group acting now.
     #[serde(skip)]
     group: Vec<usize>,
+    /// Scans taken by the team so far.
+    #[serde(skip)]
+    tally_scans: u64,
+    /// In a static world, every place scanned so far (by spot), with the team's scan number.
+    #[serde(skip)]
+    scanned: std::collections::HashMap<u64, Vec<(P, u64)>>,
 }
 
 /// Two teams are equal when their tracks, steps and recording are (the scan caches are
@@ -230,6 +293,8 @@ impl<P: Clone + PartialEq + Debug + Spot, O: Clone> Team<P, O> {
             clocks: Vec::new(),
             spots: Vec::new(),
             group: Vec::new(),
+            tally_scans: 0,
+            scanned: std::collections::HashMap::new(),
         }
     }
 
@@ -259,6 +324,7 @@ impl<P: Clone + PartialEq + Debug + Spot, O: Clone> Team<P, O> {
         if self.clocks.len() != self.robots.len() {
             self.clocks = self.robots.iter().map(|r| Self::key_of(r).0).collect();
             self.spots = self.robots.iter().map(|r| Self::key_of(r).1).collect();
+            self.tally_scans = self.robots.iter().map(|r| r.tally.scans).sum();
         }
         let mut first = 0;
         let mut best = u64::MAX;
@@ -338,12 +404,7 @@ impl<P: Clone + PartialEq + Debug + Spot, O: Clone> Team<P, O> {
                         _ => world.travel(&r.at, &to, r.clock, cost),
                     };
                     let Some(leg) = priced else {
-                        return Err(SimError::Blocked {
-                            strategy: agent.name().into(),
-                            robot: i,
-                            from: r.at.clone(),
-                            to,
-                        });
+                        return Err(SimError::blocked(agent.name(), i, r.at.clone(), to));
                     };
                     last_leg = Some((to.clone(), leg));
                     r.tally.moves += 1;
@@ -357,15 +418,23 @@ impl<P: Clone + PartialEq + Debug + Spot, O: Clone> Team<P, O> {
                     stop |= observer.on_move(i, &to, leg.metres).is_break();
                 }
                 Action::Scan => {
-                    let Some(obs) = world.scan(i, &r.at, r.clock) else {
-                        return Err(SimError::Blocked {
-                            strategy: agent.name().into(),
+                    if world.is_static()
+                        && let Some(earlier) = revisit(&mut self.scanned, self.tally_scans, &r.at)
+                    {
+                        let (strategy, at, scans) = (agent.name().into(), r.at.clone(), earlier.1);
+                        return Err(SimError::NoProgress {
+                            strategy,
                             robot: i,
-                            from: r.at.clone(),
-                            to: r.at.clone(),
+                            at,
+                            earlier: earlier.0,
+                            scans,
                         });
+                    }
+                    let Some(obs) = world.scan(i, &r.at, r.clock) else {
+                        return Err(SimError::blocked(agent.name(), i, r.at.clone(), r.at.clone()));
                     };
                     r.tally.scans += 1;
+                    self.tally_scans += 1;
                     r.scan_times.push(r.clock);
                     if self.recording.paths {
                         r.scan_places.push(r.at.clone());

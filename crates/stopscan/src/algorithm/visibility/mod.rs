@@ -78,6 +78,19 @@ impl BoundaryPiece {
             | Self::Frontier { from, to } => (from, to),
         }
     }
+
+    /// The same piece with every point moved by `f` (a change of frame).
+    #[must_use]
+    pub fn mapped(&self, f: impl Fn(Point) -> Point) -> Self {
+        match *self {
+            Self::Edge { from, to, edge } => Self::Edge { from: f(from), to: f(to), edge },
+            Self::Partial { from, to, edge } => Self::Partial { from: f(from), to: f(to), edge },
+            Self::Window { from, to, reflex, far } => {
+                Self::Window { from: f(from), to: f(to), reflex: f(reflex), far: f(far) }
+            }
+            Self::Frontier { from, to } => Self::Frontier { from: f(from), to: f(to) },
+        }
+    }
 }
 
 /// The region of the free space seen from a viewpoint: a polygon, star-shaped from the
@@ -101,6 +114,16 @@ impl VisibilityRegion {
     /// The windows (constructed edges).
     pub fn windows(&self) -> impl Iterator<Item = &BoundaryPiece> {
         self.boundary.iter().filter(|b| matches!(b, BoundaryPiece::Window { .. }))
+    }
+
+    /// The same region with every point moved by `f` (a change of frame).
+    #[must_use]
+    pub fn mapped(&self, f: impl Fn(Point) -> Point) -> Self {
+        Self {
+            viewpoint: f(self.viewpoint),
+            polygon: self.polygon.iter().map(|&p| f(p)).collect(),
+            boundary: self.boundary.iter().map(|b| b.mapped(&f)).collect(),
+        }
     }
 
     /// Where the region ends inside the free space: windows and range chords.

@@ -52,6 +52,29 @@ pub struct RangeRegion {
 }
 
 impl RangeRegion {
+    /// The same region with every point moved by `f` (a change of frame: a translation, so
+    /// radii and angles stay).
+    #[must_use]
+    pub fn mapped(&self, f: impl Fn(Point) -> Point) -> Self {
+        Self {
+            viewpoint: f(self.viewpoint),
+            radius: self.radius,
+            boundary: self
+                .boundary
+                .iter()
+                .map(|p| match p {
+                    RangePiece::Straight(b) => RangePiece::Straight(b.mapped(&f)),
+                    RangePiece::Arc(a) => RangePiece::Arc(Arc {
+                        from: f(a.from),
+                        to: f(a.to),
+                        center: f(a.center),
+                        ..*a
+                    }),
+                })
+                .collect(),
+        }
+    }
+
     /// The exact area.
     pub fn area(&self) -> f64 {
         let q = self.viewpoint;

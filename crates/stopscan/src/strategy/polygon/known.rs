@@ -6,7 +6,9 @@ use serde::{Deserialize, Serialize};
 
 use crate::algorithm::cover::{self, Intervals};
 use crate::algorithm::visibility::BoundaryPiece;
-use crate::kernel::{Point, RingSide, ring_side, segments_intersect};
+use crate::kernel::{
+    Point, RingSide, magnitude, on_segment, orient_sign, ring_side, rounding, segments_intersect,
+};
 use crate::protocol::Action;
 use crate::protocol::polygon::PolygonObservation;
 
@@ -24,6 +26,9 @@ pub(super) struct View {
     /// Every window explored: covered parts only grow, so it stays so and is skipped.
     #[serde(default)]
     pub(super) explored: bool,
+    /// The [`rounding`] of the region's coordinates: steps off a window are at least this.
+    #[serde(default)]
+    rounding: f64,
 }
 
 /// A window and how far its exploration test has got: the parts of it (as parameter
@@ -88,12 +93,20 @@ pub(super) struct Known {
 
 impl View {
     /// Whether the straight move from the viewpoint to `z` stays strictly inside the region
-    /// (exact tests against its boundary, whose reflex vertices are exact input points).
+    /// after leaving the viewpoint, `(at, z]` (exact tests against its boundary, whose reflex
+    /// vertices are exact input points). The viewpoint itself may lie on the boundary (a start
+    /// against a wall or in a corner): an edge through it meets the move only there unless `z`
+    /// lies on the edge's line.
     fn reaches(&self, z: Point) -> bool {
         let n = self.polygon.len();
         ring_side(&self.polygon, z) == RingSide::Inside
             && (0..n).all(|i| {
-                !segments_intersect(self.at, z, self.polygon[i], self.polygon[(i + 1) % n])
+                let (p, q) = (self.polygon[i], self.polygon[(i + 1) % n]);
+                if on_segment(p, q, self.at) {
+                    orient_sign(p, q, z) != 0
+                } else {
+                    !segments_intersect(self.at, z, p, q)
+                }
             })
     }
 
@@ -144,6 +157,7 @@ impl Known {
             windows,
             parent,
             explored: false,
+            rounding: rounding(magnitude(poly)),
         });
         if let Some(t) = pending.filter(|t| t.off_gap) {
             self.views[t.view].windows[t.window].no_junction = true;
@@ -188,31 +202,41 @@ impl Known {
             w.covered = covered;
             w.checked = n;
         }
-        let w = &self.views[view].windows[k];
-        let covered = &w.covered;
-        let gap = cover::first_gap(covered, w.tol)?;
-        let (dx, dy) = (to[0] - from[0], to[1] - from[1]);
-        let open = (1.0 - covered.iter().map(|c| c[1] - c[0]).sum::<f64>()) * dx.hypot(dy);
-        let tm = match self.placement {
-            Placement::Middle => 0.5 * (gap[0] + gap[1]),
-            Placement::Far => {
-                let at = self.views[view].at;
-                let d = |p: Point| (p[0] - at[0]).hypot(p[1] - at[1]);
-                let inset = 1e-3 * (gap[1] - gap[0]);
-                if d(to) >= d(from) { gap[1] - inset } else { gap[0] + inset }
+        loop {
+            let w = &self.views[view].windows[k];
+            let covered = &w.covered;
+            let gap = cover::first_gap(covered, w.tol)?;
+            let (dx, dy) = (to[0] - from[0], to[1] - from[1]);
+            let open = (1.0 - covered.iter().map(|c| c[1] - c[0]).sum::<f64>()) * dx.hypot(dy);
+            let tm = match self.placement {
+                Placement::Middle => 0.5 * (gap[0] + gap[1]),
+                Placement::Far => {
+                    let at = self.views[view].at;
+                    let d = |p: Point| (p[0] - at[0]).hypot(p[1] - at[1]);
+                    let inset = 1e-3 * (gap[1] - gap[0]);
+                    if d(to) >= d(from) { gap[1] - inset } else { gap[0] + inset }
+                }
+            };
+            let x = [from[0] + tm * dx, from[1] + tm * dy];
+            // Windows are radial, so the step goes sideways into the region (left of the
+            // window, which runs counter-clockwise around it), not toward the viewpoint: a move
+            // along the window's own ray would graze its reflex vertex.
+            let v = &self.views[view];
+            let floor = 4.0 * v.rounding / dx.hypot(dy);
+            let found = [1e-6, 1e-8, 1e-10]
+                .into_iter()
+                .map(|e: f64| e.max(floor))
+                .map(|e| [x[0] - e * dy, x[1] + e * dx])
+                .find(|&z| v.reaches(z));
+            let target = Target { at: v.at, view, window: k, gap, off_gap: false };
+            if let Some(at) = found {
+                return Some((Target { at, ..target }, open));
             }
-        };
-        let x = [from[0] + tm * dx, from[1] + tm * dy];
-        // Windows are radial, so the step goes sideways into the region (left of the window,
-        // which runs counter-clockwise around it), not toward the viewpoint: a move along the
-        // window's own ray would graze its reflex vertex.
-        let v = &self.views[view];
-        let at = [1e-6, 1e-8, 1e-10]
-            .into_iter()
-            .map(|e| [x[0] - e * dy, x[1] + e * dx])
-            .find(|&z| v.reaches(z))
-            .unwrap_or(v.at);
-        Some((Target { at, view, window: k, gap, off_gap: false }, open))
+            // No point beside this part can be reached in a straight line, and a scan where the
+            // robot stands would only repeat this view: the part counts as handled, as it would
+            // after a scan for it, so that every scan makes progress.
+            self.handled(target);
+        }
     }
 
     /// The index among `view`'s windows of the window that is its piece `piece`, if it is one
@@ -239,8 +263,10 @@ impl Known {
         // would round onto either side of it. So the step goes off the wall as well.
         let (dx, dy) = (v.at[0] - point[0], v.at[1] - point[1]);
         let d = dx.hypot(dy);
+        let floor = 4.0 * v.rounding / d;
         let at = [1e-6, 1e-4, 1e-2]
             .into_iter()
+            .map(|l: f64| l.max(floor))
             .map(|l| [point[0] + l * (dx + d * inward[0]), point[1] + l * (dy + d * inward[1])])
             .find(|&z| v.reaches(z))
             .unwrap_or(t.at);

@@ -112,10 +112,11 @@ impl RangeLimited {
     }
 
     /// Whether junction `p` of view `v` was scanned at already (within a millionth of its
-    /// distance from the view's viewpoint).
+    /// distance from the view's viewpoint, and at least the rounding of the coordinates).
     fn was_visited(&self, v: usize, p: Point) -> bool {
         let at = self.known.views[v].at;
-        let tol = 1e-6 * (p[0] - at[0]).hypot(p[1] - at[1]);
+        let tol = (1e-6 * (p[0] - at[0]).hypot(p[1] - at[1]))
+            .max(4.0 * crate::kernel::rounding(crate::kernel::magnitude(&[at, p])));
         self.visited.iter().any(|q| (q[0] - p[0]).hypot(q[1] - p[1]) <= tol)
     }
 

@@ -1,0 +1,199 @@
+//! Inputs that used to hang: starts on walls and vertices, georeferenced coordinates, and
+//! strategies that stop making progress.
+
+use stopscan::algorithm::cover::open_windows;
+use stopscan::generate::{Instance, comb, office, pillar_forest, spiral, star};
+use stopscan::geometry::{Domain, Frame, Location};
+use stopscan::io::Environment;
+use stopscan::kernel::Point;
+use stopscan::protocol::{Action, CostModel};
+use stopscan::sim::polygon::{PolygonRun, run};
+use stopscan::sim::{NoObserver, SimError};
+use stopscan::strategy::polygon::{PolygonFeedback, PolygonStrategy, REGISTRY, by_name};
+use stopscan::world::polygon::PolygonWorld;
+
+fn explore(world: &PolygonWorld, start: Point, strategy: &str) -> PolygonRun {
+    let cost = CostModel::default();
+    let mut s = by_name(strategy, &cost).unwrap();
+    run(world, start, &cost, s.as_mut(), &mut NoObserver)
+        .unwrap_or_else(|e| panic!("{strategy} from {start:?}: {e}"))
+}
+
+/// Complete: no window of the union left open, and nothing unseen by exact point tests.
+fn assert_complete(world: &PolygonWorld, run: &PolygonRun, label: &str) {
+    let d = world.domain();
+    let regions: Vec<_> = run.scans.iter().map(|s| s.region.clone()).collect();
+    let open = open_windows(&regions, |p| d.locate(p) == Location::Interior);
+    assert_eq!(open, 0, "{label}: windows left open");
+    let polys: Vec<_> = regions.iter().map(|r| r.polygon.clone()).collect();
+    let u = stopscan::algorithm::cover::uncovered_area(d, &polys);
+    assert!(u <= 1e-9 * d.area(), "{label}: {u} m² unseen");
+    for w in run.path.windows(2) {
+        assert!(world.can_move(w[0], w[1]), "{label}: illegal move {w:?}");
+    }
+}
+
+/// Every vertex of every ring, and the middle of every axis-parallel edge (exact there).
+fn boundary_points(d: &Domain) -> Vec<Point> {
+    let mut out = Vec::new();
+    for ring in d.rings() {
+        for (i, &p) in ring.iter().enumerate() {
+            out.push(p);
+            let q = ring[(i + 1) % ring.len()];
+            if p[0] == q[0] || p[1] == q[1] {
+                out.push([0.5 * (p[0] + q[0]), 0.5 * (p[1] + q[1])]);
+            }
+        }
+    }
+    out
+}
+
+#[test]
+fn every_strategy_explores_from_a_start_on_a_wall_or_a_vertex() {
+    let instances: Vec<(&str, Instance)> = vec![
+        ("spiral", spiral(4).unwrap()),
+        ("star", star(5).unwrap()),
+        ("comb", comb(3).unwrap()),
+        ("forest", pillar_forest(30.0, 20.0, 4, 3).unwrap()),
+        ("office", office(2, 3, 1).unwrap()),
+    ];
+    for (name, inst) in &instances {
+        let world = PolygonWorld::new(inst.domain.clone()).unwrap();
+        let ranged = PolygonWorld::with_range(inst.domain.clone(), Some(6.0)).unwrap();
+        let r = inst.domain.reflex_vertices().len() as u64;
+        let points = boundary_points(&inst.domain);
+        // Every boundary point for the paper's algorithm, a sample for the others.
+        for (k, &p) in points.iter().enumerate() {
+            assert_ne!(inst.domain.locate(p), Location::Outside);
+            let label = format!("{name} from {p:?}");
+            let df = explore(&world, p, "depth_first");
+            assert!(df.tally.scans <= r + 1, "{label}: {} scans > r + 1", df.tally.scans);
+            assert_complete(&world, &df, &label);
+            if k % 7 == 0 {
+                for &(strategy, _) in REGISTRY {
+                    let w = if strategy == "range_limited" { &ranged } else { &world };
+                    let run = explore(w, p, strategy);
+                    assert_complete(w, &run, &format!("{label}, {strategy}"));
+                }
+            }
+        }
+    }
+}
+
+/// The turtlebot map of the repository, written with its origin moved.
+fn ros_map_at(dir: &std::path::Path, origin: [f64; 2]) -> Environment {
+    let fixtures = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("../../fixtures/ros-maps");
+    let image = fixtures.join("turtlebot3_world.pgm").canonicalize().unwrap();
+    let yaml = dir.join(format!("map_{}_{}.yaml", origin[0], origin[1]));
+    std::fs::write(
+        &yaml,
+        format!(
+            "image: {}\nresolution: 0.05\norigin: [{:e}, {:e}, 0.0]\nnegate: 0\noccupied_thresh: 0.65\nfree_thresh: 0.196\n",
+            image.display(),
+            origin[0],
+            origin[1]
+        ),
+    )
+    .unwrap();
+    stopscan::io::read_environment(&yaml).unwrap()
+}
+
+#[test]
+fn a_georeferenced_ros_map_explores_exactly_as_at_its_usual_origin() {
+    let dir = std::env::temp_dir().join(format!("stopscan-frames-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let base = ros_map_at(&dir, [-10.0, -10.0]);
+    let world = PolygonWorld::new(base.domain.clone()).unwrap();
+    let start = world.interior_point();
+    let cost = CostModel::default();
+    let reference: Vec<PolygonRun> =
+        ["depth_first", "nearest_frontier"].iter().map(|s| explore(&world, start, s)).collect();
+    for origin in [[4.5e6, 5.3e6], [1e8, 1e8], [1e15, 0.0], [1e15, 1e15], [1e16, 1e16]] {
+        let env = ros_map_at(&dir, origin);
+        // The map is traced in its grid's frame: the same domain at every origin.
+        assert_eq!(env.domain, base.domain, "origin {origin:?}");
+        assert_eq!(env.frame, Frame::at(origin));
+        let w = PolygonWorld::new(env.domain.clone()).unwrap();
+        for (s, want) in ["depth_first", "nearest_frontier"].iter().zip(&reference) {
+            let got = explore(&w, start, s);
+            assert_eq!(got.path, want.path, "{s} at origin {origin:?}");
+            assert_eq!(cost.price(&got.tally), cost.price(&want.tally));
+        }
+    }
+    std::fs::remove_dir_all(&dir).ok();
+}
+
+#[test]
+fn a_georeferenced_polygon_is_moved_exactly_and_explored_completely() {
+    let inst = office(3, 4, 2).unwrap();
+    for off in [4.5e6, 1e10, 1e12] {
+        // Coordinates that are representable after the shift, as a surveyed map's are.
+        let rings: Vec<Vec<Point>> = inst
+            .domain
+            .rings()
+            .iter()
+            .map(|r| r.iter().map(|p| [p[0] + off, p[1] - off]).collect())
+            .collect();
+        let (outer, holes) = rings.split_first().unwrap();
+        let shifted = Domain::new(outer.clone(), holes.to_vec()).unwrap();
+        let start = [inst.start[0] + off, inst.start[1] - off];
+        let env = Environment::new(shifted.clone(), vec![start]).localised().unwrap();
+        assert!(!env.frame.is_identity());
+        // Exact: back in the input's frame, every vertex is the input's.
+        for (a, b) in env.domain.rings().iter().zip(shifted.rings()) {
+            let back: Vec<Point> = a.iter().map(|&p| env.frame.to_input(p)).collect();
+            assert_eq!(&back, b);
+        }
+        for &(s, _) in REGISTRY {
+            let range = (s == "range_limited").then_some(5.0);
+            let w = PolygonWorld::with_range(env.domain.clone(), range).unwrap();
+            let run = explore(&w, env.queries[0], s);
+            assert_complete(&w, &run, &format!("{s}, offset {off}"));
+        }
+    }
+}
+
+/// A strategy that scans where it stands forever.
+struct Stubborn;
+
+impl PolygonStrategy for Stubborn {
+    fn name(&self) -> &'static str {
+        "stubborn"
+    }
+    fn act(&mut self, _feedback: &PolygonFeedback) -> Action<Point> {
+        Action::Scan
+    }
+}
+
+/// A strategy that drives back and forth between two points, scanning at each.
+struct Pendulum(usize);
+
+impl PolygonStrategy for Pendulum {
+    fn name(&self) -> &'static str {
+        "pendulum"
+    }
+    fn act(&mut self, feedback: &PolygonFeedback) -> Action<Point> {
+        self.0 += 1;
+        match feedback {
+            PolygonFeedback::Arrived | PolygonFeedback::Start(_) => Action::Scan,
+            PolygonFeedback::Scanned(_) => {
+                Action::MoveTo { to: if self.0 % 4 == 2 { [3.0, 1.0] } else { [1.0, 1.0] } }
+            }
+        }
+    }
+}
+
+#[test]
+fn the_loop_ends_a_strategy_that_stops_making_progress_and_keeps_the_run_so_far() {
+    let d = Domain::new(vec![[0.0, 0.0], [4.0, 0.0], [4.0, 3.0], [0.0, 3.0]], vec![]).unwrap();
+    let world = PolygonWorld::new(d).unwrap();
+    let cost = CostModel::default();
+    let e = run(&world, [1.0, 1.0], &cost, &mut Stubborn, &mut NoObserver).unwrap_err();
+    assert!(matches!(e.error, SimError::NoProgress { earlier: 1, scans: 1, .. }), "{e}");
+    assert_eq!(e.partial.tally.scans, 1);
+    assert!(e.to_string().contains("nothing new"), "{e}");
+    let e = run(&world, [1.0, 1.0], &cost, &mut Pendulum(0), &mut NoObserver).unwrap_err();
+    assert!(matches!(e.error, SimError::NoProgress { at: [1.0, 1.0], earlier: 1, scans: 2, .. }));
+    assert_eq!(e.partial.tally.scans, 2);
+    assert_eq!(e.partial.path, vec![[1.0, 1.0], [3.0, 1.0], [1.0, 1.0]]);
+}
