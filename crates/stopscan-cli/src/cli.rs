@@ -300,9 +300,21 @@ pub(crate) struct ExploreArgs {
     /// Compute the offline greedy reference for domains up to this many vertices.
     #[arg(long, default_value_t = 1000)]
     pub(crate) greedy_max_vertices: usize,
-    /// Compute the exact offline optimum (integer programming) up to this many vertices.
-    #[arg(long, default_value_t = 40)]
+    /// Search for the exact offline optimum (integer programming over candidate viewpoints)
+    /// for domains up to this many vertices.
+    #[arg(long, default_value_t = 400)]
     pub(crate) optimum_max_vertices: usize,
+    /// Seconds for the optimum's search; when they run out, the best set found, the best
+    /// proven lower bound and the gap are reported (0: skip the search).
+    #[arg(long, default_value_t = 5.0)]
+    pub(crate) optimum_seconds: f64,
+    /// Seconds for the lower bounds (valid when cut short, only weaker).
+    #[arg(long, default_value_t = 5.0)]
+    pub(crate) bounds_seconds: f64,
+    /// The integer-programming solver: microlp (built in); cbc and highs when built with the
+    /// cargo features of those names.
+    #[arg(long, default_value = "microlp")]
+    pub(crate) solver: String,
     /// Write every move and scan as it happens, one JSON object per line (flushed per event).
     #[arg(long)]
     pub(crate) trace: Option<PathBuf>,

@@ -116,9 +116,19 @@ fn explore(j: &Job) -> anyhow::Result<Outcome> {
     };
     // A run cut short is not measured against the offline references (they take time, and a
     // ratio of an unfinished run means nothing); its record says why it ended.
-    let limits = if failure.is_some() { ReferenceLimits::NONE } else { j.limits };
-    let refs =
-        stopscan::offline::polygon::references(world.visibility(), j.start, j.range, limits)?;
+    let limits = if failure.is_some() { ReferenceLimits::BOUNDS_ONLY } else { j.limits };
+    let refs = {
+        let bar = crate::output::spinner();
+        let refs = stopscan::offline::polygon::references(
+            world.visibility(),
+            j.start,
+            j.range,
+            limits,
+            &mut |stage| bar.set_message(format!("offline: {stage}")),
+        );
+        bar.finish_and_clear();
+        refs?
+    };
     let regions: Vec<_> = run.scans.iter().map(|s| s.region.clone()).collect();
     let svg = stopscan::render::exploration_svg(j.domain, &regions, &run.path);
     let mut record = RunRecord::polygon(j.name, &world, j.strategy, &j.cost, &run, &refs, j.seed)
@@ -138,7 +148,19 @@ fn summary(w: &mut dyn Write, o: &RunRecord) -> std::io::Result<()> {
     let mut t = Table::new(&["quantity", "value"]);
     let b = &o.bounds;
     let opt = |v: Option<usize>, why: &str| v.map_or_else(|| why.to_string(), |v| v.to_string());
-    let rows: [(&str, String); 16] = [
+    let optimum = match (b.optimum, b.optimum_best) {
+        (Some(v), _) => format!("{v} (proven in {:.2} s, {})", b.optimum_seconds, b.optimum_solver),
+        (None, Some(best)) => format!(
+            "between {} and {best} (gap {}; {} after {:.2} s, {})",
+            b.optimum_lower,
+            best.saturating_sub(b.optimum_lower),
+            b.optimum_note,
+            b.optimum_seconds,
+            b.optimum_solver
+        ),
+        (None, None) => b.optimum_note.clone(),
+    };
+    let rows: Vec<(&str, String)> = vec![
         ("scans", m.scans.to_string()),
         ("moves", m.moves.to_string()),
         ("distance (m)", num(Some(m.distance), 3)),
@@ -149,14 +171,20 @@ fn summary(w: &mut dyn Write, o: &RunRecord) -> std::io::Result<()> {
         ("coverage", num(Some(m.coverage), 9)),
         ("windows left open", m.open_windows.to_string()),
         ("upper bound (paper)", format!("{} ({})", b.scans_upper, b.scans_upper_rule)),
-        ("lower bound on the optimum", b.scans_lower.to_string()),
-        ("scans / lower bound", num(Some(m.scans as f64 / b.scans_lower as f64), 2)),
-        ("offline greedy reference", opt(b.greedy_reference, "not computed")),
-        ("offline optimum (ILP)", opt(b.optimum, "not computed")),
+        ("lower bound: scans", format!("{} ({})", b.scans_lower, b.scans_lower_rule)),
+        ("lower bound: distance (m)", num(Some(b.distance_lower), 3)),
+        ("lower bound: time (s)", num(Some(b.time_lower), 3)),
         (
-            "competitive ratio (vs optimum)",
-            b.competitive_ratio.map_or("not computed".into(), |r| num(Some(r), 3)),
+            "certified ratio (time / lower bound)",
+            b.certified_ratio.map_or("-".into(), |r| {
+                let cut =
+                    if b.bounds_complete { "" } else { " (bounds cut short by their budget)" };
+                format!("{}{cut}", num(Some(r), 3))
+            }),
         ),
+        ("offline greedy reference (views)", opt(b.greedy_reference, "not computed")),
+        ("offline optimum over candidates (views)", optimum),
+        ("scans / offline optimum", b.competitive_ratio.map_or("-".into(), |r| num(Some(r), 3))),
         ("sensor range (m)", o.sensor.range.map_or("unlimited".into(), |r| num(Some(r), 3))),
     ];
     for (k, v) in rows {
@@ -258,9 +286,17 @@ fn sweep_dir(a: &ExploreArgs, g: &Global) -> anyhow::Result<()> {
             .unwrap_or_else(|_| ProgressStyle::default_bar()),
     );
     let cost = cost_of(a.scan_time, a.move_time, a.speed)?;
-    let rows = stopscan::experiment::polygon::sweep(&inputs, &strategies, &cost, a.range, &|| {
-        bar.inc(1);
-    });
+    let limits = limits_of(a)?;
+    let rows = stopscan::experiment::polygon::sweep(
+        &inputs,
+        &strategies,
+        &cost,
+        a.range,
+        limits.bounds_seconds,
+        &|| {
+            bar.inc(1);
+        },
+    );
     bar.finish_and_clear();
     let out = g.out.clone().unwrap_or_else(|| PathBuf::from("sweep.csv"));
     let tmp = out.with_extension("csv.tmp");
@@ -306,6 +342,24 @@ fn sweep_dir(a: &ExploreArgs, g: &Global) -> anyhow::Result<()> {
     Ok(())
 }
 
+fn limits_of(a: &ExploreArgs) -> anyhow::Result<ReferenceLimits> {
+    for (flag, v) in
+        [("--optimum-seconds", a.optimum_seconds), ("--bounds-seconds", a.bounds_seconds)]
+    {
+        if !(v.is_finite() && (0.0..=86_400.0).contains(&v)) {
+            bail!("{flag} must be between 0 and 86400 seconds, got {v}");
+        }
+    }
+    Ok(ReferenceLimits {
+        greedy_max_vertices: a.greedy_max_vertices,
+        optimum_max_vertices: a.optimum_max_vertices,
+        optimum_seconds: a.optimum_seconds,
+        bounds_seconds: a.bounds_seconds,
+        solver: stopscan::offline::polygon::Solver::by_name(&a.solver)
+            .map_err(|e| anyhow::anyhow!("--solver: {e}"))?,
+    })
+}
+
 pub(crate) fn run(a: &ExploreArgs, g: &Global) -> anyhow::Result<()> {
     if a.env.is_dir() {
         return sweep_dir(a, g);
@@ -327,10 +381,7 @@ pub(crate) fn run(a: &ExploreArgs, g: &Global) -> anyhow::Result<()> {
         strategy: &a.strategy,
         cost: cost_of(a.scan_time, a.move_time, a.speed)?,
         range: a.range,
-        limits: ReferenceLimits {
-            greedy_max_vertices: a.greedy_max_vertices,
-            optimum_max_vertices: a.optimum_max_vertices,
-        },
+        limits: limits_of(a)?,
         seed: g.seed,
         trace: a.trace.as_deref(),
     })?;

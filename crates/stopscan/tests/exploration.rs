@@ -210,9 +210,22 @@ fn check_range(inst: &Instance, name: &str, range: f64) -> PolygonRun {
         "{name} R={range}: {} scans > Lemma 4's {bound}",
         run.tally.scans
     );
-    // Every scan sees at most a disc: the scans are at least area / πR².
-    let lower = stopscan::offline::polygon::lower_bound(d, Some(range)) as u64;
-    assert!(run.tally.scans >= lower, "{name} R={range}: {} scans < {lower}", run.tally.scans);
+    // The certified lower bounds hold for the run: every scan sees at most a disc, and
+    // witnesses the start does not see need scans and travel.
+    let lower =
+        stopscan::offline::polygon::lower_bounds(world.visibility(), inst.start, Some(range), None)
+            .unwrap();
+    assert!(lower.area >= 1 && lower.views >= lower.area);
+    assert!(
+        run.tally.scans >= lower.views as u64,
+        "{name} R={range}: {} scans < {lower:?}",
+        run.tally.scans
+    );
+    assert!(
+        run.tally.distance >= lower.travel,
+        "{name} R={range}: {} m < {lower:?}",
+        run.tally.distance
+    );
     run
 }
 

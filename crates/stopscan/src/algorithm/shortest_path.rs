@@ -191,6 +191,44 @@ impl<'a> PathPlanner<'a> {
         self.adj.iter().map(Vec::len).sum::<usize>() / 2
     }
 
+    /// The length of the shortest path from `s` to every reflex vertex that is a bend of some
+    /// shortest path from `s` (exact for those; an upper bound for the others), with `s`
+    /// itself at distance 0 first. A shortest path from `s` to anywhere ends with a straight
+    /// segment from its last bend `u`, for which this length is exact, so `min_u (len(u) +
+    /// |u x|)` over this list is the exact geodesic distance to any point `x` — and a lower
+    /// bound on the distance to any set, taking `|u x|` as the straight distance to the set.
+    ///
+    /// # Complexity
+    /// O(r) exact walks from `s`, then Dijkstra over the graph.
+    pub fn distances_from(&self, s: Point) -> Vec<(Point, f64)> {
+        let mesh = self.vis.mesh();
+        let n = self.nodes.len();
+        let mut g = vec![f64::INFINITY; n];
+        let mut heap = BinaryHeap::new();
+        if !matches!(mesh.locate(s), MeshLocation::Outside) {
+            for (i, u) in self.nodes.iter().enumerate() {
+                if segment_is_free(mesh, s, u.1) {
+                    g[i] = dist(s, u.1);
+                    heap.push(Entry(g[i], i as u32));
+                }
+            }
+        }
+        while let Some(Entry(d, k)) = heap.pop() {
+            if d > g[k as usize] {
+                continue;
+            }
+            for &(m, w) in &self.adj[k as usize] {
+                if d + w < g[m as usize] {
+                    g[m as usize] = d + w;
+                    heap.push(Entry(d + w, m));
+                }
+            }
+        }
+        std::iter::once((s, 0.0))
+            .chain((0..n).filter(|&i| g[i].is_finite()).map(|i| (self.nodes[i].1, g[i])))
+            .collect()
+    }
+
     /// The shortest path from `s` to `t`, or `None` if either is outside the free space or
     /// they are not connected.
     ///

@@ -162,14 +162,15 @@ fn views_benchmarks(data: &std::path::Path) -> Result<Reproduction, ExperimentEr
         inputs.push((name, env.domain, start));
     }
     let names: Vec<&str> = crate::strategy::polygon::REGISTRY.iter().map(|r| r.0).collect();
-    let sweep_rows = sweep(&inputs, &names, &CostModel::default(), None, &|| {});
     let limits = crate::offline::polygon::ReferenceLimits::default();
+    let sweep_rows =
+        sweep(&inputs, &names, &CostModel::default(), None, limits.bounds_seconds, &|| {});
     let refs: Vec<Result<References, String>> = inputs
         .par_iter()
         .map(|(_, d, start)| {
             let vis = crate::algorithm::visibility::Visibility::new(d.clone())
                 .map_err(|e| e.to_string())?;
-            crate::offline::polygon::references(&vis, *start, None, limits)
+            crate::offline::polygon::references(&vis, *start, None, limits, &mut |_| {})
                 .map_err(|e| e.to_string())
         })
         .collect();
@@ -188,24 +189,19 @@ fn views_benchmarks(data: &std::path::Path) -> Result<Reproduction, ExperimentEr
                 Some(row.scans_upper as f64),
                 row.scans as f64,
             ));
+            if let Some(c) = row.certified_ratio {
+                rows.push(Row::new(
+                    format!(
+                        "{name} · {}: certified ratio, time / time lower bound ({} scans at least)",
+                        row.strategy, row.scans_lower
+                    ),
+                    None,
+                    c,
+                ));
+            }
         }
         match &refs[i] {
-            Ok(r) => {
-                if let Some(g) = r.greedy.as_ref().filter(|g| g.certified) {
-                    rows.push(Row::new(
-                        format!("{name}: offline greedy reference (connected views)"),
-                        None,
-                        g.viewpoints.len() as f64,
-                    ));
-                }
-                if let Some(o) = r.optimum.as_ref().filter(|o| o.certified) {
-                    rows.push(Row::new(
-                        format!("{name}: offline optimum (ILP over start, vertices, centroids)"),
-                        None,
-                        o.viewpoints.len() as f64,
-                    ));
-                }
-            }
+            Ok(r) => rows.extend(reference_rows(name, r)),
             Err(e) => failed.push(format!("{name} · offline references: {e}")),
         }
     }
@@ -218,8 +214,12 @@ fn views_benchmarks(data: &std::path::Path) -> Result<Reproduction, ExperimentEr
             "{complete} of {runs} runs complete: no window left open (the exact certificate) and coverage ≥ 1 − 1e-9"
         ),
         format!(
-            "offline references: greedy for up to {} vertices, the exact optimum for up to {}",
-            limits.greedy_max_vertices, limits.optimum_max_vertices
+            "offline references: greedy for up to {} vertices, the exact optimum for up to {} within {} s each (solver {}); lower bounds within {} s (witnesses with disjoint visibility regions, a valid fractional packing, the distance to the farthest witness's region)",
+            limits.greedy_max_vertices,
+            limits.optimum_max_vertices,
+            limits.optimum_seconds,
+            limits.solver.name(),
+            limits.bounds_seconds
         ),
     ];
     notes.extend(failed.into_iter().map(|f| format!("failed: {f}")));
@@ -235,6 +235,36 @@ fn views_benchmarks(data: &std::path::Path) -> Result<Reproduction, ExperimentEr
         images: vec![],
         tables: vec![],
     })
+}
+
+/// The offline references' rows of one environment.
+fn reference_rows(name: &str, r: &References) -> Vec<Row> {
+    let mut rows = Vec::new();
+    if let Some(g) = r.greedy.as_ref().filter(|g| g.certified) {
+        rows.push(Row::new(
+            format!("{name}: offline greedy reference (connected views)"),
+            None,
+            g.viewpoints.len() as f64,
+        ));
+    }
+    if let Some(o) = r.optimum.views() {
+        rows.push(Row::new(
+            format!("{name}: offline optimum (ILP over start, vertices, centroids)"),
+            None,
+            o as f64,
+        ));
+    } else if let Some(b) = &r.optimum.best {
+        rows.push(Row::new(
+            format!(
+                "{name}: offline optimum not proven ({}): best {} views, lower bound",
+                r.optimum.note,
+                b.viewpoints.len()
+            ),
+            None,
+            r.optimum.lower as f64,
+        ));
+    }
+    rows
 }
 
 /// One row of an exploration sweep (the CSV's columns; metric names as in the run record).
@@ -274,6 +304,12 @@ pub struct SweepRow {
     pub scans_upper: usize,
     /// Whether scans are within it.
     pub within_bound: bool,
+    /// The lower bound on any complete exploration's scans.
+    pub scans_lower: usize,
+    /// The lower bound on any complete exploration's time.
+    pub time_lower: f64,
+    /// `time / time_lower`: an upper bound on the run's competitive ratio.
+    pub certified_ratio: Option<f64>,
     /// Empty, or why the run failed.
     pub error: String,
 }
@@ -283,21 +319,32 @@ pub type SweepInput = (String, crate::geometry::Domain, crate::kernel::Point);
 
 /// Explores every input with every strategy, in parallel (rayon); rows come back in input
 /// order, strategies in the given order, whatever the thread count. `range` limits the
-/// sensor. `tick` is called after each run (for a progress bar).
+/// sensor. Each input's lower bounds are computed once, within `bounds_seconds`. `tick` is
+/// called after each run (for a progress bar).
 pub fn sweep(
     inputs: &[SweepInput],
     strategies: &[&str],
     cost: &CostModel,
     range: Option<f64>,
+    bounds_seconds: f64,
     tick: &(dyn Fn() + Sync),
 ) -> Vec<SweepRow> {
     use rayon::prelude::*;
+    let lower: Vec<Option<crate::offline::polygon::LowerBounds>> = inputs
+        .par_iter()
+        .map(|(_, domain, start)| {
+            let vis = crate::algorithm::visibility::Visibility::new(domain.clone()).ok()?;
+            let deadline = crate::offline::polygon::deadline_in(bounds_seconds);
+            crate::offline::polygon::lower_bounds(&vis, *start, range, deadline).ok()
+        })
+        .collect();
     let jobs: Vec<(usize, usize)> =
         (0..inputs.len()).flat_map(|i| (0..strategies.len()).map(move |s| (i, s))).collect();
     jobs.par_iter()
         .map(|&(i, s)| {
             let (name, domain, start) = &inputs[i];
-            let row = sweep_one(name, domain, *start, strategies[s], cost, range);
+            let row =
+                sweep_one(name, domain, *start, strategies[s], cost, range, lower[i].as_ref());
             tick();
             row
         })
@@ -311,6 +358,7 @@ fn sweep_one(
     strategy: &str,
     cost: &CostModel,
     range: Option<f64>,
+    lower: Option<&crate::offline::polygon::LowerBounds>,
 ) -> SweepRow {
     let r = domain.reflex_vertices().len();
     let (upper, _) = crate::offline::polygon::upper_bound(domain, range);
@@ -332,17 +380,26 @@ fn sweep_one(
         open_windows: 0,
         scans_upper: upper,
         within_bound: false,
+        scans_lower: 0,
+        time_lower: 0.0,
+        certified_ratio: None,
         error: String::new(),
     };
     let outcome = (|| -> Result<RunRecord, String> {
+        let lower = lower.ok_or("the lower bounds could not be computed")?;
         let world = PolygonWorld::with_range(domain.clone(), range).map_err(|e| e.to_string())?;
         let mut s = crate::strategy::polygon::by_name(strategy, cost)
             .ok_or_else(|| format!("unknown strategy {strategy}"))?;
         let run =
             run(&world, start, cost, s.as_mut(), &mut NoObserver).map_err(|e| e.to_string())?;
         let refs = References {
-            lower: crate::offline::polygon::lower_bound(domain, range),
-            ..References::default()
+            lower: lower.clone(),
+            greedy: None,
+            optimum: crate::offline::polygon::OptimumReport::skipped(
+                crate::offline::polygon::Solver::default(),
+                lower.views,
+                "not computed in sweeps".into(),
+            ),
         };
         Ok(RunRecord::polygon(name, &world, strategy, cost, &run, &refs, 0))
     })();
@@ -359,6 +416,9 @@ fn sweep_one(
             row.coverage = m.coverage;
             row.open_windows = m.open_windows;
             row.within_bound = m.scans as usize <= upper;
+            row.scans_lower = rec.bounds.scans_lower;
+            row.time_lower = rec.bounds.time_lower;
+            row.certified_ratio = rec.bounds.certified_ratio;
         }
         Err(e) => row.error = e,
     }

@@ -102,21 +102,61 @@ pub struct Metrics {
 pub struct Bounds {
     /// The paper's r + 1 (full visibility).
     pub scans_upper: usize,
-    /// A lower bound on the optimum's scans.
+    /// A lower bound on the scans of *any* complete exploration, viewpoints anywhere
+    /// ([`crate::offline::polygon::bounds`]).
     pub scans_lower: usize,
-    /// Scans divided by the optimum, when the optimum is known (null otherwise).
+    /// Which bound `scans_lower` is.
+    #[serde(default)]
+    pub scans_lower_rule: String,
+    /// A lower bound on the metres any complete exploration drives.
+    #[serde(default)]
+    pub distance_lower: f64,
+    /// The lower bound on any complete exploration's time under the run's cost model:
+    /// `scan_time·scans_lower + move_time·(scans_lower − 1) + distance_lower/speed`.
+    #[serde(default)]
+    pub time_lower: f64,
+    /// `time / time_lower`: an upper bound on this run's true competitive ratio (the optimum
+    /// takes at least `time_lower`).
+    #[serde(default)]
+    pub certified_ratio: Option<f64>,
+    /// Whether the bounds' computation finished within its time budget (they are valid either
+    /// way, only weaker when cut short).
+    #[serde(default)]
+    pub bounds_complete: bool,
+    /// Scans divided by the proven optimum over the candidates, when proven (null
+    /// otherwise). The candidates restrict the optimum, so this may understate the true
+    /// ratio; `certified_ratio` bounds it from above.
     pub competitive_ratio: Option<f64>,
     /// Which bound `scans_upper` is (Theorem 1's r + 1, or Lemma 4's with a range).
     #[serde(default)]
     pub scans_upper_rule: String,
     /// Views of the offline greedy reference (start and vertex or triangle candidates, each
-    /// seen from an earlier one), when computed.
+    /// seen from an earlier one), when computed. A reference, not a bound: an online run can
+    /// do better.
     #[serde(default)]
     pub greedy_reference: Option<usize>,
     /// The exact minimum number of views over the same candidates (integer programming),
-    /// when computed and certified.
+    /// when proven.
     #[serde(default)]
     pub optimum: Option<usize>,
+    /// How the search for the optimum ended: `proven`, `budget_reached` or `skipped`.
+    #[serde(default)]
+    pub optimum_status: String,
+    /// The best complete set the search found (the optimum when proven), in views.
+    #[serde(default)]
+    pub optimum_best: Option<usize>,
+    /// The best proven lower bound on the optimum over the candidates.
+    #[serde(default)]
+    pub optimum_lower: usize,
+    /// Seconds the search took, and the solver.
+    #[serde(default)]
+    pub optimum_seconds: f64,
+    /// The integer-programming solver.
+    #[serde(default)]
+    pub optimum_solver: String,
+    /// Why the search was skipped or stopped.
+    #[serde(default)]
+    pub optimum_note: String,
 }
 
 /// A whole run record.
@@ -180,7 +220,7 @@ impl RunRecord {
     ) -> Self {
         let domain = world.domain();
         let (upper, rule) = upper_bound(domain, world.range());
-        let optimum = refs.optimum.as_ref().filter(|o| o.certified).map(|o| o.viewpoints.len());
+        let optimum = refs.optimum.views();
         let polys: Vec<Vec<Point>> = run.scans.iter().map(|s| s.region.polygon.clone()).collect();
         let uncovered = crate::algorithm::cover::uncovered_area(domain, &polys);
         let regions: Vec<_> = run.scans.iter().map(|s| s.region.clone()).collect();
@@ -189,6 +229,8 @@ impl RunRecord {
         });
         let free = domain.area();
         let r = domain.reflex_vertices().len();
+        let time = run.time.total();
+        let time_lower = refs.lower.time(cost);
         Self {
             format: "stopscan-run/1".into(),
             environment: EnvironmentInfo {
@@ -226,7 +268,12 @@ impl RunRecord {
             },
             bounds: Bounds {
                 scans_upper: upper,
-                scans_lower: refs.lower.max(optimum.unwrap_or(0)),
+                scans_lower: refs.lower.views,
+                scans_lower_rule: refs.lower.views_rule.clone(),
+                distance_lower: refs.lower.travel,
+                time_lower,
+                certified_ratio: (time_lower > 0.0).then(|| time / time_lower),
+                bounds_complete: refs.lower.complete,
                 competitive_ratio: optimum.map(|o| run.tally.scans as f64 / o as f64),
                 scans_upper_rule: rule.into(),
                 greedy_reference: refs
@@ -235,6 +282,15 @@ impl RunRecord {
                     .filter(|g| g.certified)
                     .map(|g| g.viewpoints.len()),
                 optimum,
+                optimum_status: serde_json::to_value(refs.optimum.status)
+                    .ok()
+                    .and_then(|v| v.as_str().map(str::to_string))
+                    .unwrap_or_default(),
+                optimum_best: refs.optimum.best.as_ref().map(|b| b.viewpoints.len()),
+                optimum_lower: refs.optimum.lower,
+                optimum_seconds: refs.optimum.seconds,
+                optimum_solver: refs.optimum.solver.name().into(),
+                optimum_note: refs.optimum.note.clone(),
             },
             seed,
             stopscan_version: crate::VERSION.into(),

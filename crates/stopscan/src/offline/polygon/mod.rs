@@ -1,39 +1,45 @@
-//! Offline references for polygon exploration: what a robot that knew the map could do.
+//! Offline references for polygon exploration: what a robot that knew the map could do, and
+//! what no robot can do better than.
 //!
 //! The paper's offline problem (its conditions 1–3) is the art gallery problem with one more
 //! constraint: every viewpoint after the first is seen from an earlier one, and the first is
 //! the start. Here:
 //!
-//! - [`lower_bound`]: 1 view, or `⌈area / πR²⌉` with a range limit (the paper's bound for the
-//!   competitive ratio of the range-limited algorithm);
-//! - [`greedy`]: a valid viewpoint set, as an upper reference: from the start, repeatedly add
-//!   the candidate seen from a chosen one that sees the most area not yet covered;
-//! - [`optimum`]: the exact minimum over the same candidates by integer programming
-//!   (good_lp with the pure-Rust microlp), for small instances.
+//! - [`bounds`]: lower bounds on the views, the distance and the time of *any* exploration,
+//!   with viewpoints anywhere (witnesses with disjoint visibility regions, a fractional
+//!   packing made valid, the area a range-limited scan can see, the distance to the farthest
+//!   witness's region). They certify `time / time_lower` as an upper bound on a run's
+//!   competitive ratio;
+//! - [`greedy`]: a valid viewpoint set, as an upper *reference* (not a bound): from the start,
+//!   repeatedly add the candidate seen from a chosen one that sees the most area not yet
+//!   covered;
+//! - [`optimum`]: the exact minimum over the same candidates by integer programming, within a
+//!   time budget (the best set found and the best proven lower bound when it runs out).
 //!
 //! **Candidates** are the start, every vertex of the domain (a guard on a vertex, seen in the
 //! closed free space; a robot stands a hair inside) and the centroid of every triangle of the
 //! free space's constrained Delaunay triangulation (so that, for instance, the kernel of a
 //! star is among them). Vertex guards alone always suffice: each triangle is seen whole from
 //! each of its corners. The exact minimum is exact *over these candidates*; a point guard
-//! elsewhere can occasionally do better, which the output says.
+//! elsewhere can occasionally do better, which the output says, and which is why the
+//! certified ratio is taken against [`bounds`] and not against it.
 //!
 //! **Witnesses**: coverage is required at the centroid of every triangle of the free space
-//! (weighted by its area), and the solution is then checked exactly with
+//! (weighted by its area), and a solution is then checked exactly with
 //! [`cover::open_windows`]. Where a window of the chosen regions is left open (its probe
-//! point lies in the free space), a witness is added there and the problem is solved again, until the certificate holds (the
-//! usual iterative scheme for art gallery problems). The ILP optimum over witnesses is a lower
-//! bound of the optimum over candidates; once its solution is certified complete, it is that
-//! optimum. Connectivity is added lazily the same way: when the chosen set falls apart in the
-//! visibility graph, each part away from the start gets a cut (one of its neighbours must be
-//! chosen), and the program is solved again.
+//! point lies in the free space), a witness is added there and the problem is solved again,
+//! until the certificate holds (the usual iterative scheme for art gallery problems).
+
+pub mod bounds;
+pub mod optimum;
+
+pub use bounds::{LowerBounds, lower_bounds};
+pub use optimum::{OptimumReport, OptimumStatus, Solver};
 
 use std::collections::HashMap;
 
-use good_lp::{
-    Expression, Solution, SolverModel, Variable, WithTimeLimit, constraint, microlp, variable,
-    variables,
-};
+use std::time::{Duration, Instant};
+
 use serde::{Deserialize, Serialize};
 
 use crate::algorithm::cover;
@@ -60,18 +66,6 @@ pub enum OfflineError {
     /// The integer program failed (time limit, or a solver error).
     #[error("integer program: {0}")]
     Solver(String),
-}
-
-/// The lower bound on the number of views of any exploration: 1, or `⌈area / (πR²)⌉` when a
-/// view sees at most a disc of radius `range`.
-pub fn lower_bound(domain: &Domain, range: Option<f64>) -> usize {
-    match range {
-        Some(r) if r > 0.0 && r.is_finite() => {
-            let discs = domain.area() / (std::f64::consts::PI * r * r);
-            (discs.ceil() as usize).max(1)
-        }
-        _ => 1,
-    }
 }
 
 /// The bound of the paper's Lemma 4 on the views of the range-limited algorithm:
@@ -109,60 +103,111 @@ pub fn upper_bound(domain: &Domain, range: Option<f64>) -> (usize, &'static str)
 }
 
 /// Everything a run is measured against.
-#[derive(Debug, Clone, Default, PartialEq, Serialize, Deserialize)]
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 pub struct References {
-    /// The lower bound on any exploration's views ([`lower_bound`]).
-    pub lower: usize,
+    /// Lower bounds on any exploration ([`bounds`]).
+    pub lower: LowerBounds,
     /// The greedy upper reference, when computed.
     pub greedy: Option<ViewSet>,
-    /// The exact minimum over the candidates, when computed.
-    pub optimum: Option<ViewSet>,
+    /// The exact minimum over the candidates, or how far the search got.
+    pub optimum: OptimumReport,
 }
 
-/// Limits on the offline work for one run.
+/// Limits on the offline work for one run. Every stage has a time budget: when it runs out,
+/// the stage reports what it has (bounds stay valid, only weaker; the optimum search reports
+/// its best set and its best proven lower bound).
 #[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
 pub struct ReferenceLimits {
     /// Compute the greedy reference up to this many domain vertices.
     pub greedy_max_vertices: usize,
-    /// Compute the exact optimum up to this many domain vertices.
+    /// Search for the exact optimum up to this many domain vertices.
     pub optimum_max_vertices: usize,
+    /// Seconds for the exact optimum's search.
+    pub optimum_seconds: f64,
+    /// Seconds for the lower bounds.
+    pub bounds_seconds: f64,
+    /// The integer-programming solver.
+    pub solver: Solver,
 }
 
 impl Default for ReferenceLimits {
     fn default() -> Self {
-        Self { greedy_max_vertices: 1000, optimum_max_vertices: 40 }
+        Self {
+            greedy_max_vertices: 1000,
+            optimum_max_vertices: 400,
+            optimum_seconds: 5.0,
+            bounds_seconds: 5.0,
+            solver: Solver::default(),
+        }
     }
 }
 
 impl ReferenceLimits {
-    /// Only the closed-form lower bound.
-    pub const NONE: Self = Self { greedy_max_vertices: 0, optimum_max_vertices: 0 };
+    /// Only the lower bounds (within their default budget): no greedy reference, no optimum.
+    pub const BOUNDS_ONLY: Self = Self {
+        greedy_max_vertices: 0,
+        optimum_max_vertices: 0,
+        optimum_seconds: 0.0,
+        bounds_seconds: 5.0,
+        solver: Solver::Microlp,
+    };
 }
 
-/// The lower bound always, and the greedy and exact references within `limits`. With a range
-/// limit only the lower bound is computed: the candidates' regions above are unlimited.
+/// A deadline `seconds` from now (none for an infinite budget).
+pub fn deadline_in(seconds: f64) -> Option<Instant> {
+    (seconds.is_finite() && seconds >= 0.0)
+        .then(|| Instant::now() + Duration::from_secs_f64(seconds.min(1e9)))
+}
+
+/// What the offline work is doing, for a progress display.
+pub type Progress<'a> = &'a mut dyn FnMut(&str);
+
+/// The lower bounds always, the greedy reference and the exact optimum within `limits`
+/// (references use full visibility, so with a range limit only the bounds are computed).
+/// `progress` hears what is being computed.
 ///
 /// # Errors
-/// [`OfflineError`] if the start is outside the free space or the solver fails.
+/// [`OfflineError`] if the start is outside the free space.
 pub fn references(
     vis: &Visibility,
     start: Point,
     range: Option<f64>,
     limits: ReferenceLimits,
+    progress: Progress,
 ) -> Result<References, OfflineError> {
     let d = vis.domain();
-    let mut refs = References { lower: lower_bound(d, range), greedy: None, optimum: None };
-    if range.is_some() {
-        return Ok(refs);
-    }
+    progress("lower bounds");
+    let lower = lower_bounds(vis, start, range, deadline_in(limits.bounds_seconds))?;
     let n = d.vertex_count();
+    let views = lower.views;
+    let skipped = |why: String| OptimumReport::skipped(limits.solver, views, why);
+    if range.is_some() {
+        let why = "not computed with a range limit (the candidates' regions are unlimited)";
+        return Ok(References { lower, greedy: None, optimum: skipped(why.into()) });
+    }
+    let mut problem = None;
+    let mut greedy_set = None;
     if n <= limits.greedy_max_vertices {
-        refs.greedy = Some(greedy(vis, start)?);
+        progress("greedy reference");
+        let p = problem.insert(Problem::new(vis, start)?);
+        greedy_set = Some(greedy_on(p)?);
     }
-    if n <= limits.optimum_max_vertices {
-        refs.optimum = optimum(vis, start, limits.optimum_max_vertices)?;
-    }
-    Ok(refs)
+    let optimum = if n > limits.optimum_max_vertices {
+        skipped(format!(
+            "not attempted: {n} vertices, above the limit of {} (--optimum-max-vertices)",
+            limits.optimum_max_vertices
+        ))
+    } else if limits.optimum_seconds <= 0.0 {
+        skipped("not attempted: no time budget (--optimum-seconds 0)".into())
+    } else {
+        let p = match problem.as_mut() {
+            Some(p) => p,
+            None => problem.insert(Problem::new(vis, start)?),
+        };
+        let deadline = deadline_in(limits.optimum_seconds);
+        optimum::solve(p, lower.views, greedy_set.as_ref(), limits.solver, deadline, progress)?
+    };
+    Ok(References { lower, greedy: greedy_set.map(|g| g.set), optimum })
 }
 
 /// The candidates, the witnesses and who sees what.
@@ -321,14 +366,49 @@ fn key(p: Point) -> [u64; 2] {
 /// # Complexity
 /// O(n) visibility queries for the candidates and witnesses, then O(k · n · w) for k views.
 pub fn greedy(vis: &Visibility, start: Point) -> Result<ViewSet, OfflineError> {
+    Ok(greedy_on(&mut Problem::new(vis, start)?)?.set)
+}
+
+/// The exact minimum over the candidates (see [`optimum`]) within `seconds`, with the greedy
+/// reference as the first incumbent and the geometric lower bounds as the first bound.
+///
+/// # Errors
+/// [`OfflineError`] if the start is outside the free space or the solver fails.
+pub fn optimum(
+    vis: &Visibility,
+    start: Point,
+    seconds: f64,
+    solver: Solver,
+) -> Result<OptimumReport, OfflineError> {
+    let lower = lower_bounds(vis, start, None, deadline_in(seconds))?;
     let mut p = Problem::new(vis, start)?;
+    let g = greedy_on(&mut p)?;
+    optimum::solve(&mut p, lower.views, Some(&g), solver, deadline_in(seconds), &mut |_| {})
+}
+
+/// A greedy set: the viewpoints and the candidates they are.
+struct Greedy {
+    set: ViewSet,
+    chosen: Vec<usize>,
+}
+
+fn greedy_on(p: &mut Problem) -> Result<Greedy, OfflineError> {
+    greedy_from(p, &[0])
+}
+
+/// The greedy completion of `initial` (the start and candidates connected to it): candidates
+/// seen from a chosen one are added, most uncovered area first, until the set is certified
+/// complete.
+fn greedy_from(p: &mut Problem, initial: &[usize]) -> Result<Greedy, OfflineError> {
     let nc = p.cands.len();
-    let mut chosen = vec![0];
+    let mut chosen = initial.to_vec();
     let mut is_chosen = vec![false; nc];
-    is_chosen[0] = true;
     let mut eligible = vec![false; nc];
-    for &n in &p.sees[0] {
-        eligible[n] = true;
+    for &c in &chosen {
+        is_chosen[c] = true;
+        for &n in &p.sees[c] {
+            eligible[n] = true;
+        }
     }
     // Witnesses each candidate sees, and which witnesses are covered; both grow as witnesses
     // are added by the certificate.
@@ -369,115 +449,23 @@ pub fn greedy(vis: &Visibility, start: Point) -> Result<ViewSet, OfflineError> {
             }
         }
         if p.certify(&chosen)? {
-            return Ok(p.view_set(&chosen, true));
+            return Ok(Greedy { set: p.view_set(&chosen, true), chosen });
         }
     }
-    Ok(p.view_set(&chosen, false))
-}
-
-/// The exact minimum number of views over the candidates (start and vertices), with the
-/// connectivity constraint, by integer programming; `None` when the domain has more than
-/// `max_vertices` vertices.
-///
-/// The model: a binary `x_c` per candidate, `x_start = 1`; every witness seen by a chosen
-/// candidate; and a single-commodity flow from the start along visibility arcs, each chosen
-/// candidate absorbing one unit, arcs open only between chosen candidates — so the chosen set
-/// is connected to the start in the visibility graph, which is the paper's condition 2.
-///
-/// # Errors
-/// [`OfflineError`] if the start is outside the free space or the solver fails.
-pub fn optimum(
-    vis: &Visibility,
-    start: Point,
-    max_vertices: usize,
-) -> Result<Option<ViewSet>, OfflineError> {
-    if vis.domain().vertex_count() > max_vertices {
-        return Ok(None);
-    }
-    let mut p = Problem::new(vis, start)?;
-    let mut cuts: Vec<Vec<usize>> = Vec::new();
-    let mut last = Vec::new();
-    for _round in 0..200 {
-        let chosen = solve_ilp(&p, &cuts)?;
-        let (_, rest) = p.reach(&chosen);
-        if !rest.is_empty() {
-            cuts.extend(components(&p, &rest));
-            continue;
-        }
-        if p.certify(&chosen)? {
-            return Ok(Some(p.view_set(&chosen, true)));
-        }
-        last = chosen;
-    }
-    Ok(Some(p.view_set(&last, false)))
-}
-
-/// The connected parts of `rest` in the visibility graph, each as the cut "some neighbour of
-/// the part outside it is chosen" (listed as those neighbours, then a member of the part).
-fn components(p: &Problem, rest: &[usize]) -> Vec<Vec<usize>> {
-    let mut inrest = vec![false; p.cands.len()];
-    for &c in rest {
-        inrest[c] = true;
-    }
-    let mut seen = vec![false; p.cands.len()];
-    let mut cuts = Vec::new();
-    for &r in rest {
-        if seen[r] {
-            continue;
-        }
-        let mut part = vec![r];
-        seen[r] = true;
-        let mut k = 0;
-        while k < part.len() {
-            for &n in &p.sees[part[k]] {
-                if inrest[n] && !seen[n] {
-                    seen[n] = true;
-                    part.push(n);
-                }
-            }
-            k += 1;
-        }
-        let mut inpart = vec![false; p.cands.len()];
-        for &c in &part {
-            inpart[c] = true;
-        }
-        let mut nb: Vec<usize> =
-            part.iter().flat_map(|&c| p.sees[c].iter().copied()).filter(|&n| !inpart[n]).collect();
-        nb.sort_unstable();
-        nb.dedup();
-        for &v in &part {
-            let mut cut = nb.clone();
-            cut.push(v);
-            cuts.push(cut);
-        }
-    }
-    cuts
-}
-
-fn solve_ilp(p: &Problem, cuts: &[Vec<usize>]) -> Result<Vec<usize>, OfflineError> {
-    let n = p.cands.len();
-    let mut vars = variables!();
-    let x: Vec<Variable> = (0..n).map(|_| vars.add(variable().binary())).collect();
-    let objective: Expression = x.iter().copied().sum();
-    let mut model = vars.minimise(objective).using(microlp).with_time_limit(60.0);
-    model = model.with(constraint!(x[0] == 1.0));
-    for by in &p.seen_by {
-        let e: Expression = by.iter().map(|&c| x[c]).sum();
-        model = model.with(constraint!(e >= 1.0));
-    }
-    for cut in cuts {
-        let (v, nb) = cut.split_last().unwrap_or((&0, &[]));
-        let e: Expression = nb.iter().map(|&c| x[c]).sum();
-        model = model.with(constraint!(e >= x[*v]));
-    }
-    let sol = model.solve().map_err(|e| OfflineError::Solver(e.to_string()))?;
-    Ok((0..n).filter(|&c| sol.value(x[c]) > 0.5).collect())
+    Ok(Greedy { set: p.view_set(&chosen, false), chosen })
 }
 
 #[cfg(test)]
 mod tests {
     use super::*;
     use crate::generate::{spiral, star};
+
+    fn proven(v: &Visibility, start: Point) -> usize {
+        let o = optimum(v, start, 60.0, Solver::Microlp).unwrap();
+        assert_eq!(o.status, OptimumStatus::Proven, "{o:?}");
+        assert!(o.best.as_ref().unwrap().certified);
+        o.views().unwrap()
+    }
 
     #[test]
     fn a_convex_room_needs_one_view() {
@@ -486,8 +474,7 @@ mod tests {
         let g = greedy(&v, [1.0, 1.0]).unwrap();
         assert_eq!(g.viewpoints.len(), 1);
         assert!(g.certified);
-        let o = optimum(&v, [1.0, 1.0], 50).unwrap().unwrap();
-        assert_eq!(o.viewpoints.len(), 1);
+        assert_eq!(proven(&v, [1.0, 1.0]), 1);
     }
 
     #[test]
@@ -495,26 +482,25 @@ mod tests {
         // The paper's Fig. 11: the start and the star point.
         let s = star(5).unwrap();
         let v = Visibility::new(s.domain.clone()).unwrap();
-        let o = optimum(&v, s.start, 60).unwrap().unwrap();
-        assert!(o.certified);
-        assert_eq!(o.viewpoints.len(), 2);
+        assert_eq!(proven(&v, s.start), 2);
         // The paper's Fig. 9: no algorithm does better than r + 1 on the spiral.
         for turns in 1..4 {
             let sp = spiral(turns).unwrap();
             let v = Visibility::new(sp.domain.clone()).unwrap();
-            let o = optimum(&v, sp.start, 60).unwrap().unwrap();
-            assert!(o.certified);
-            assert_eq!(o.viewpoints.len(), turns + 1, "spiral {turns}");
+            assert_eq!(proven(&v, sp.start), turns + 1, "spiral {turns}");
             let g = greedy(&v, sp.start).unwrap();
-            assert!(g.certified && g.viewpoints.len() >= o.viewpoints.len());
+            assert!(g.certified && g.viewpoints.len() > turns);
         }
     }
 
     #[test]
-    fn the_range_lower_bound_counts_discs() {
-        let d =
-            Domain::new(vec![[0.0, 0.0], [10.0, 0.0], [10.0, 10.0], [0.0, 10.0]], vec![]).unwrap();
-        assert_eq!(lower_bound(&d, None), 1);
-        assert_eq!(lower_bound(&d, Some(1.0)), 32); // 100 / π = 31.8
+    fn a_zero_budget_reports_the_greedy_set_and_the_bounds() {
+        let sp = spiral(6).unwrap();
+        let v = Visibility::new(sp.domain.clone()).unwrap();
+        let o = optimum(&v, sp.start, 0.0, Solver::Microlp).unwrap();
+        assert_eq!(o.status, OptimumStatus::BudgetReached);
+        assert!(o.views().is_none());
+        let best = o.best.as_ref().unwrap().viewpoints.len();
+        assert!(o.lower <= best && o.gap() == Some(best - o.lower), "{o:?}");
     }
 }
