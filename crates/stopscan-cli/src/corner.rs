@@ -69,6 +69,7 @@ fn circle_cmd(d: f64, g: &Global) -> anyhow::Result<()> {
             .collect();
         let chart = LineChart {
             title: format!("Circle strategy at d = {d}: c = {:.6}", s.ratio),
+            subtitle: String::new(),
             x_label: "x (start at 0, corner at d)".into(),
             y_label: "y".into(),
             series: vec![

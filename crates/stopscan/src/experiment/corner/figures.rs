@@ -103,9 +103,15 @@ fn lineup_times(
 const NAMES: [&str; 4] = ["UNIREC", "EXPREC", "POLICY1", "POLICY2"];
 
 /// Expected time of the four strategies against a swept parameter.
-fn lineup_chart(title: String, x_label: &str, series: Vec<Vec<(f64, f64)>>) -> LineChart {
+fn lineup_chart(
+    title: String,
+    subtitle: String,
+    x_label: &str,
+    series: Vec<Vec<(f64, f64)>>,
+) -> LineChart {
     LineChart {
         title,
+        subtitle,
         x_label: x_label.into(),
         y_label: "expected time to see the edge (s)".into(),
         series: series
@@ -134,6 +140,7 @@ pub(super) fn corner_fig_7() -> Result<Reproduction, ExperimentError> {
     }
     let chart = lineup_chart(
         "Expected time vs reconstruction time (distribution 3)".into(),
+        "D = 10 m, v = 0.5 m/s, uniform belief and truth (distribution 3), MDP step 5°, Bayes MDP probabilities, nominal last step".into(),
         "reconstruction time τ (s)",
         series,
     );
@@ -197,6 +204,7 @@ pub(super) fn corner_fig_8() -> Result<Reproduction, ExperimentError> {
             format!("corner-fig-8-{side}"),
             lineup_chart(
                 format!("Wrong beliefs: policies for N(µ, 5°), {what}"),
+                "τ = 2 s, D = 10 m, v = 0.5 m/s, beliefs N(µ, 5°) on 5° buckets, Bayes MDP probabilities, nominal last step".into(),
                 "belief mean µ (degrees)",
                 series,
             ),
@@ -299,6 +307,7 @@ pub(super) fn circle_fig_7(seed: u64) -> Reproduction {
             "circle-fig-7-small".into(),
             LineChart {
                 title: "Circle strategy: c(d) for small d".into(),
+                subtitle: "scan cost 1, speed 1; d = D/(vτ); 2000 distances in (0, 10]".into(),
                 x_label: "distance d (units of v·τ)".into(),
                 y_label: "competitive ratio c".into(),
                 series: vec![
@@ -311,6 +320,7 @@ pub(super) fn circle_fig_7(seed: u64) -> Reproduction {
             "circle-fig-7-large".into(),
             LineChart {
                 title: "Circle strategy: c(d) for larger d".into(),
+                subtitle: "scan cost 1, speed 1; d = D/(vτ); 2000 distances in (0, 100]".into(),
                 x_label: "distance d (units of v·τ)".into(),
                 y_label: "competitive ratio c".into(),
                 series: vec![

@@ -257,6 +257,7 @@ pub fn demo() -> Result<Demo, ExperimentError> {
     }
     let chart = LineChart {
         title: "Circle strategy: competitive ratio c(d)".into(),
+        subtitle: "scan cost 1, speed 1; d = D/(vτ)".into(),
         x_label: "distance d (units of v·τ)".into(),
         y_label: "competitive ratio c".into(),
         series: vec![
