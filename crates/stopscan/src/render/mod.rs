@@ -15,8 +15,10 @@ use serde::{Deserialize, Serialize};
 
 use crate::strategy::corner::mdp::Cell;
 
+mod glyphs;
 mod roi;
 mod scene;
+use glyphs::PaddedText;
 pub use roi::roi_svg;
 pub use scene::{exploration_svg, scene_svg};
 
@@ -106,7 +108,7 @@ pub fn write_chart(chart: &LineChart, stem: &Path) -> Result<Vec<PathBuf>, Rende
     let png = stem.with_extension("png");
     draw_chart(&SVGBackend::new(&svg, CHART_SIZE).into_drawing_area(), chart)
         .map_err(|reason| RenderError::Draw { path: svg.clone(), reason })?;
-    draw_chart(&BitMapBackend::new(&png, CHART_SIZE).into_drawing_area(), chart)
+    draw_chart(&PaddedText(BitMapBackend::new(&png, CHART_SIZE)).into_drawing_area(), chart)
         .map_err(|reason| RenderError::Draw { path: png.clone(), reason })?;
     Ok(vec![svg, png])
 }
@@ -511,8 +513,12 @@ pub fn write_policy_image(
     let h = if rows.len() <= 2 { 220 } else { side + 60 };
     draw_policy(&SVGBackend::new(&svg, (side + 80, h)).into_drawing_area(), rows, title)
         .map_err(|reason| RenderError::Draw { path: svg.clone(), reason })?;
-    draw_policy(&BitMapBackend::new(&png, (side + 80, h)).into_drawing_area(), rows, title)
-        .map_err(|reason| RenderError::Draw { path: png.clone(), reason })?;
+    draw_policy(
+        &PaddedText(BitMapBackend::new(&png, (side + 80, h))).into_drawing_area(),
+        rows,
+        title,
+    )
+    .map_err(|reason| RenderError::Draw { path: png.clone(), reason })?;
     Ok(vec![svg, png])
 }
 
