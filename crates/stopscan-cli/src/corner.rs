@@ -69,6 +69,7 @@ fn circle_cmd(d: f64, g: &Global) -> anyhow::Result<()> {
             .collect();
         let chart = LineChart {
             title: format!("Circle strategy at d = {d}: c = {:.6}", s.ratio),
+            subtitle: String::new(),
             x_label: "x (start at 0, corner at d)".into(),
             y_label: "y".into(),
             series: vec![
@@ -476,20 +477,7 @@ pub(crate) fn reproduce(a: &cli::ReproduceArgs, g: &Global) -> anyhow::Result<()
                 for m in &r.model {
                     writeln!(w, "model: {m}")?;
                 }
-                let mut t = Table::new(&["row", "paper", "ours", "rel diff", "monte carlo"]);
-                for row in &r.rows {
-                    let mc = row
-                        .monte_carlo
-                        .map_or("-".into(), |m| format!("{:.2} ± {:.2}", m.mean, m.std_err));
-                    t.row(vec![
-                        row.label.clone(),
-                        num(row.paper, 6),
-                        num(Some(row.ours), 6),
-                        row.rel_diff.map_or("-".into(), |d| format!("{:+.2}%", 100.0 * d)),
-                        mc,
-                    ]);
-                }
-                t.write(&mut w)?;
+                rows_table(r).write(&mut w)?;
                 for n in &r.notes {
                     writeln!(w, "note: {n}")?;
                 }
@@ -501,6 +489,43 @@ pub(crate) fn reproduce(a: &cli::ReproduceArgs, g: &Global) -> anyhow::Result<()
         }
     }
     Ok(())
+}
+
+/// The rows of a reproduction as a table; other readings of the paper get one column each,
+/// `=` where they equal ours.
+fn rows_table(r: &stopscan::experiment::Reproduction) -> Table {
+    // Other readings of the paper: one column each, "=" where equal to ours.
+    let mut others: Vec<&str> = Vec::new();
+    for o in r.rows.iter().flat_map(|row| &row.other_readings) {
+        if !others.contains(&o.reading.as_str()) {
+            others.push(&o.reading);
+        }
+    }
+    let mut head = vec!["row", "paper", "ours", "rel diff", "monte carlo"];
+    head.extend(&others);
+    let mut t = Table::new(&head);
+    for row in &r.rows {
+        let mc =
+            row.monte_carlo.map_or("-".into(), |m| format!("{:.2} ± {:.2}", m.mean, m.std_err));
+        let mut cells = vec![
+            row.label.clone(),
+            num(row.paper, 6),
+            num(Some(row.ours), 6),
+            row.rel_diff.map_or("-".into(), |d| format!("{:+.2}%", 100.0 * d)),
+            mc,
+        ];
+        cells.extend(others.iter().map(|name| {
+            row.other_readings.iter().find(|o| o.reading == *name).map_or("-".into(), |o| {
+                match o.rel_diff {
+                    _ if o.ours == row.ours => "=".into(),
+                    Some(d) => format!("{:.2} ({:+.1}%)", o.ours, 100.0 * d),
+                    None => num(Some(o.ours), 6),
+                }
+            })
+        }));
+        t.row(cells);
+    }
+    t
 }
 
 pub(crate) fn demo(g: &Global) -> anyhow::Result<()> {

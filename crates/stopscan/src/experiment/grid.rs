@@ -160,12 +160,25 @@ pub fn csv(rows: &[Fig7Row]) -> String {
     out
 }
 
+/// The values a sweep holds fixed, for the chart's subtitle.
+fn fixed_parameters(sweep: &str, trials: usize) -> String {
+    let (c, r, s) = FIXED;
+    let held = match sweep {
+        "cells" => format!("R = {r} robots, S_r/S_p = {s}"),
+        "robots" => format!("C = {c} cells, S_r/S_p = {s}"),
+        _ => format!("C = {c} cells, R = {r} robots"),
+    };
+    format!("{held}; S_r = 1 m/s, 1 m cells; {trials} random drifting regions per point")
+}
+
 fn chart(rows: &[Fig7Row], sweep: &str, title: &str, x_label: &str) -> LineChart {
     let pick = |f: &dyn Fn(&Fig7Row) -> f64| -> Vec<(f64, f64)> {
         rows.iter().filter(|r| r.sweep == sweep).map(|r| (r.x, f(r))).collect()
     };
+    let trials = rows.iter().find(|r| r.sweep == sweep).map_or(0, |r| r.trials);
     LineChart {
         title: title.into(),
+        subtitle: fixed_parameters(sweep, trials),
         x_label: x_label.into(),
         y_label: "exploration time (s)".into(),
         series: vec![
@@ -226,4 +239,26 @@ pub fn reproduce(trials: usize, seed: u64) -> Result<Reproduction, ExperimentErr
         images: Vec::new(),
         tables: vec![("roi-fig-7.csv".into(), csv(&rows))],
     })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn each_chart_states_what_it_holds_fixed() {
+        let rows = fig7_rows(1, 3).unwrap();
+        for (sweep, held, swept) in [
+            ("cells", ["R = 20 robots", "S_r/S_p = 2.5"], "C = "),
+            ("robots", ["C = 120 cells", "S_r/S_p = 2.5"], "R = "),
+            ("speed_ratio", ["C = 120 cells", "R = 20 robots"], "S_r/S_p = "),
+        ] {
+            let c = chart(&rows, sweep, "t", "x");
+            for h in held {
+                assert!(c.subtitle.contains(h), "{sweep}: {}", c.subtitle);
+            }
+            assert!(!c.subtitle.contains(swept), "{sweep} is swept: {}", c.subtitle);
+            assert!(c.subtitle.contains("1 random drifting regions per point"), "{}", c.subtitle);
+        }
+    }
 }

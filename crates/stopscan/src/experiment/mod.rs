@@ -66,13 +66,56 @@ pub struct Row {
     /// Our Monte Carlo estimate with the paper's sample count, when the paper's value is one.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub monte_carlo: Option<MonteCarlo>,
+    /// The same quantity under other readings of the paper, shown beside the declared one
+    /// (`ours`); each changes one choice of the reproduction's declared reading.
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub other_readings: Vec<OtherReading>,
+}
+
+/// A compared number under a reading other than the declared one.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct OtherReading {
+    /// The reading, named by the one choice it changes (`capped last step`).
+    pub reading: String,
+    /// Our value under it.
+    pub ours: f64,
+    /// `(ours − paper) / |paper|`.
+    pub rel_diff: Option<f64>,
+    /// Our Monte Carlo estimate under it, when the row has one.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub monte_carlo: Option<MonteCarlo>,
 }
 
 impl Row {
     /// A row; `rel_diff` is computed.
     pub fn new(label: impl Into<String>, paper: Option<f64>, ours: f64) -> Self {
         let rel_diff = paper.map(|p| (ours - p) / p.abs());
-        Self { label: label.into(), paper, ours, rel_diff, monte_carlo: None }
+        Self {
+            label: label.into(),
+            paper,
+            ours,
+            rel_diff,
+            monte_carlo: None,
+            other_readings: Vec::new(),
+        }
+    }
+
+    /// Adds the value under another reading; `rel_diff` is computed against the same paper value.
+    #[must_use]
+    pub fn with_other_reading(
+        mut self,
+        reading: impl Into<String>,
+        ours: f64,
+        monte_carlo: Option<MonteCarlo>,
+    ) -> Self {
+        let rel_diff = self.paper.map(|p| (ours - p) / p.abs());
+        self.other_readings.push(OtherReading {
+            reading: reading.into(),
+            ours,
+            rel_diff,
+            monte_carlo,
+        });
+        self
     }
 
     /// Attaches a Monte Carlo estimate.

@@ -206,10 +206,9 @@ pub fn fit_distribution_2() -> (f64, f64, f64) {
 /// [`ExperimentError::UnknownId`] for an unknown identifier; model errors otherwise.
 pub fn reproduce(id: &str, samples: usize, seed: u64) -> Result<Reproduction, ExperimentError> {
     match id {
-        "corner-table-2" | "corner-table-3" => {
-            tables::corner_table(id, if id.ends_with('2') { 2.0 } else { 10.0 }, samples, seed)
-        }
-        "corner-table-4" => tables::corner_table_4(samples, seed),
+        "corner-table-2" => tables::corner_table(tables::Table::Two, samples, seed),
+        "corner-table-3" => tables::corner_table(tables::Table::Three, samples, seed),
+        "corner-table-4" => tables::corner_table(tables::Table::Four, samples, seed),
         "corner-fig-4" | "corner-fig-6" => figures::corner_policy_figure(id),
         "corner-fig-7" => figures::corner_fig_7(),
         "corner-fig-8" => figures::corner_fig_8(),
@@ -257,6 +256,7 @@ pub fn demo() -> Result<Demo, ExperimentError> {
     }
     let chart = LineChart {
         title: "Circle strategy: competitive ratio c(d)".into(),
+        subtitle: "scan cost 1, speed 1; d = D/(vτ)".into(),
         x_label: "distance d (units of v·τ)".into(),
         y_label: "competitive ratio c".into(),
         series: vec![
