@@ -278,6 +278,33 @@ pub struct SweepRow {
     pub error: String,
 }
 
+impl SweepRow {
+    /// The row of a run that could not start (an environment file that does not load, say):
+    /// zeros, and the reason in `error`.
+    pub fn failed(environment: &str, strategy: &str, error: impl Into<String>) -> Self {
+        Self {
+            environment: environment.into(),
+            strategy: strategy.into(),
+            vertices: 0,
+            holes: 0,
+            reflex_vertices: 0,
+            free_area: 0.0,
+            scans: 0,
+            moves: 0,
+            distance: 0.0,
+            time: 0.0,
+            scan_time_total: 0.0,
+            move_time_total: 0.0,
+            travel_time_total: 0.0,
+            coverage: 0.0,
+            open_windows: 0,
+            scans_upper: 0,
+            within_bound: false,
+            error: error.into(),
+        }
+    }
+}
+
 /// An environment to sweep: name, domain and start.
 pub type SweepInput = (String, crate::geometry::Domain, crate::kernel::Point);
 
