@@ -87,7 +87,7 @@ pub(crate) fn run(a: &BenchArgs, g: &Global) -> anyhow::Result<()> {
                 n as f64,
                 limits::DISTANCES,
                 || format!("--n {n}"),
-                "8 bytes and about 5 µs per distance and repetition",
+                "8 bytes and about 7 µs per distance and repetition",
                 "",
             )?;
             let mut rng = rand_chacha::ChaCha8Rng::seed_from_u64(g.seed);

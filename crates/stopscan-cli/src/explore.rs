@@ -375,6 +375,9 @@ pub(crate) fn generate(a: &GenerateArgs, g: &Global) -> anyhow::Result<()> {
         Family::Forest => {
             (crate::limits::PILLARS, "pillars (a 30 m × 20 m rectangle holds a few hundred)")
         }
+        Family::Star => {
+            (crate::limits::SPIKES, "the star's checks grow with the square of its spikes")
+        }
         _ => (crate::limits::SIZE, "the work grows with the size, and with desks quadratically"),
     };
     crate::limits::soft(g, n as f64, max, || format!("--size {n}"), what, "")?;

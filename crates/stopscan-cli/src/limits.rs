@@ -20,12 +20,15 @@ pub(crate) const CELLS: u64 = 4_000_000;
 /// Camera frames a mission may render and classify, estimated as frames per scan times the
 /// region's cells and a third of the search box (`roi --camera --frames`): ~0.6 ms each.
 pub(crate) const FRAMES: u64 = 250_000;
-/// Distances of `bench circle --n`: ~5 µs each.
-pub(crate) const DISTANCES: u64 = 10_000_000;
+/// Distances of `bench circle --n`: ~7 µs each per timed repetition (and one warm-up).
+pub(crate) const DISTANCES: u64 = 1_000_000;
 /// Office floors of `bench explore --n`: ~2.5 ms each.
 pub(crate) const FLOORS: u64 = 10_000;
-/// `generate --size` (turns, spikes, teeth, rooms per side) and `--desks`.
+/// `generate --size` (turns, teeth, rooms per side) and `--desks`: 0.8–10 s at the limit.
 pub(crate) const SIZE: u64 = 10_000;
+/// `generate star --size` (spikes): the star's validation grows quadratically (3,000
+/// spikes: 9 s).
+pub(crate) const SPIKES: u64 = 1_000;
 /// `generate forest --size` (pillars in a 30 m × 20 m rectangle: a few hundred fit).
 pub(crate) const PILLARS: u64 = 1_000;
 

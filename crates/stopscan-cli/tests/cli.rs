@@ -957,7 +957,7 @@ fn size_limits_are_checked_before_any_work() {
         ),
         (vec!["roi", "--random", "50", "--robots", "100000000000"], vec!["the limit is 10,000"]),
         (vec!["roi", "--random", "1000000000"], vec!["the limit is 4,000,000"]),
-        (vec!["bench", "circle", "--n", "10000000000"], vec!["the limit is 10,000,000"]),
+        (vec!["bench", "circle", "--n", "10000000000"], vec!["the limit is 1,000,000"]),
         (vec!["bench", "ratio", "--n", "1000000000"], vec!["the limit is 10,000,000"]),
         (vec!["bench", "explore", "--n", "1000000"], vec!["the limit is 10,000"]),
         (vec!["bench", "roi", "--n", "1e9"], vec!["the limit is 4,000,000"]),
