@@ -12,6 +12,7 @@ use stopscan::strategy::corner::mdp::{CornerMdp, Memory, Reading};
 use stopscan::strategy::corner::{circle, unirec};
 
 use crate::cli::{BenchArgs, BenchTarget, Global, SolverArg};
+use crate::limits;
 use crate::output::emit;
 
 pub(crate) fn median(mut v: Vec<f64>) -> f64 {
@@ -34,6 +35,9 @@ fn time<T>(repeat: usize, mut f: impl FnMut() -> T) -> f64 {
 }
 
 pub(crate) fn run(a: &BenchArgs, g: &Global) -> anyhow::Result<()> {
+    if a.repeat > 1000 {
+        bail!("--repeat must be at most 1,000, got {}", a.repeat);
+    }
     if a.target == BenchTarget::Visibility {
         return crate::visibility::bench(a, g);
     }
@@ -78,9 +82,14 @@ pub(crate) fn run(a: &BenchArgs, g: &Global) -> anyhow::Result<()> {
         }
         BenchTarget::Circle => {
             let n = a.n.unwrap_or(100_000);
-            if n == 0 {
-                bail!("--n (distances) must be positive");
-            }
+            limits::soft(
+                g,
+                n as f64,
+                limits::DISTANCES,
+                || format!("--n {n}"),
+                "8 bytes and about 7 µs per distance and repetition",
+                "",
+            )?;
             let mut rng = rand_chacha::ChaCha8Rng::seed_from_u64(g.seed);
             let ds: Vec<f64> = (0..n).map(|_| rng.random_range(0.01..100.0)).collect();
             (
@@ -94,6 +103,20 @@ pub(crate) fn run(a: &BenchArgs, g: &Global) -> anyhow::Result<()> {
             let n = a.n.unwrap_or(1000);
             if n < 2 {
                 bail!("--n (stops) must be at least 2");
+            }
+            limits::soft(
+                g,
+                n as f64,
+                limits::STOPS.min(stopscan::strategy::corner::MAX_STOPS as u64),
+                || format!("--n {n} UNIREC stops"),
+                "16 bytes and about 45 ns per stop",
+                "",
+            )?;
+            if n > stopscan::strategy::corner::MAX_STOPS {
+                bail!(
+                    "--n must be at most {} stops for ratio, got {n}",
+                    limits::count(stopscan::strategy::corner::MAX_STOPS as f64)
+                );
             }
             let delta = std::f64::consts::FRAC_PI_2 / n as f64;
             let setup = CornerSetup::new(1.0 / delta, CostModel::default())?;
@@ -115,6 +138,14 @@ pub(crate) fn run(a: &BenchArgs, g: &Global) -> anyhow::Result<()> {
 fn bench_explore(a: &BenchArgs, g: &Global) -> anyhow::Result<()> {
     // n generated office floors (seeded sizes and desks), all explored in parallel.
     let n = a.n.unwrap_or(1000);
+    limits::soft(
+        g,
+        n as f64,
+        limits::FLOORS,
+        || format!("--n {n} office floors"),
+        "all are generated before the timing, about 2.5 ms and 50 kB each",
+        "",
+    )?;
     let mut rng = rand_chacha::ChaCha8Rng::seed_from_u64(g.seed);
     let inputs: Vec<_> = (0..n)
         .map(|i| {
@@ -159,9 +190,7 @@ fn bench_roi(a: &BenchArgs, g: &Global) -> anyhow::Result<()> {
     use stopscan::sim::Recording;
     use stopscan::world::grid::{Drift, GridRoi, GridSensor, GridWorld};
     let cells = a.n.unwrap_or(1_000_000);
-    if cells == 0 || a.robots == 0 {
-        bail!("--n (cells) and --robots must be positive");
-    }
+    crate::roi::check_size(g, "--n", cells, a.robots)?;
     let t = Instant::now();
     let roi = GridRoi::random(cells, g.seed)?;
     let generate = t.elapsed().as_secs_f64();

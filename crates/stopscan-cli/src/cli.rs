@@ -26,10 +26,34 @@ pub(crate) struct Global {
     /// Seed for everything random (Monte Carlo, random restarts, random benchmark inputs).
     #[arg(long, global = true, default_value_t = 0)]
     pub(crate) seed: u64,
-    /// Where results go: the JSON result file, or a directory for commands that draw pictures
-    /// (the demo, `reproduce`, `corner policy`, `corner circle`, `corner thresholds`).
+    /// Where results go: the JSON result file (its directory must exist), or a directory for
+    /// commands that draw pictures (the main job, `corner demo`, `corner circle`, `corner
+    /// policy`, `reproduce`), created if missing (its parent must exist).
     #[arg(long, global = true)]
     pub(crate) out: Option<PathBuf>,
+    /// Lift the soft size limits (Monte Carlo samples, UNIREC stops, ROI robots, cells, search
+    /// box and camera frames, bench sizes, generated sizes); see the README's "Limits".
+    #[arg(long, global = true)]
+    pub(crate) allow_large: bool,
+}
+
+/// A clap parser for counts: a whole number of at least `min`. Negative numbers reach it (the
+/// flags allow them) and get this message instead of clap's "unexpected argument"; a whole
+/// number in scientific notation (`1e6`) is accepted.
+pub(crate) fn count_at_least(min: usize) -> impl Fn(&str) -> Result<usize, String> + Clone {
+    move |s: &str| {
+        let t = s.trim();
+        let v = t.parse::<usize>().ok().or_else(|| {
+            t.parse::<f64>()
+                .ok()
+                .filter(|x| x.fract() == 0.0 && *x >= 0.0 && *x <= 9.007_199_254_740_992e15)
+                .map(|x| x as usize)
+        });
+        match v {
+            Some(n) if n >= min => Ok(n),
+            _ => Err(format!("expected a whole number of at least {min}")),
+        }
+    }
 }
 
 #[derive(Debug, Clone, Copy, PartialEq, Eq, ValueEnum)]
@@ -77,31 +101,31 @@ pub(crate) enum CornerCommand {
     /// The 2-competitive circle strategy at distance D: ratio c(D), steps, scan points.
     Circle {
         /// Distance to the corner in units of v·τ (scan cost 1, speed 1).
-        #[arg(long)]
+        #[arg(long, allow_negative_numbers = true)]
         distance: f64,
     },
     /// Distances at which the circle strategy needs one more scan (the circle paper's Table 1).
     Thresholds {
-        /// How many thresholds (0 to count−1 intermediate scans).
-        #[arg(long, default_value_t = 6)]
+        /// How many thresholds (0 to count−1 intermediate scans), at most 60.
+        #[arg(long, default_value_t = 6, allow_negative_numbers = true, value_parser = count_at_least(1))]
         count: usize,
     },
     /// Globally optimal scan points for at most K intermediate scans, anywhere in the plane.
     Optimal {
         /// Distance to the corner in units of v·τ.
-        #[arg(long)]
+        #[arg(long, allow_negative_numbers = true)]
         distance: f64,
         /// The most intermediate scans (at most 12; the search takes seconds per scan).
-        #[arg(long)]
+        #[arg(long, allow_negative_numbers = true, value_parser = count_at_least(0))]
         scans: usize,
     },
     /// Theorem 1: run the circle recursion with a ratio below 2 and watch it collapse.
     Collapse {
         /// The ratio c to try.
-        #[arg(long)]
+        #[arg(long, allow_negative_numbers = true)]
         ratio: f64,
         /// Distance (default 10/(2 − c), far beyond the proof's 1/(2 − c)).
-        #[arg(long)]
+        #[arg(long, allow_negative_numbers = true)]
         distance: Option<f64>,
     },
     /// The exact worst-case competitive ratio of a strategy at step δ = τv/D.
@@ -130,10 +154,10 @@ pub(crate) struct RatioArgs {
     #[arg(long, value_enum)]
     pub(crate) strategy: RatioStrategy,
     /// δ = τ·v/D: the angle (radians) travelled on the circle in one scan time.
-    #[arg(long)]
+    #[arg(long, allow_negative_numbers = true)]
     pub(crate) delta: f64,
     /// Stop angles in degrees for --strategy stops, comma-separated, increasing.
-    #[arg(long, value_delimiter = ',')]
+    #[arg(long, allow_negative_numbers = true, value_delimiter = ',')]
     pub(crate) stops_deg: Vec<f64>,
     #[command(flatten)]
     pub(crate) readings: Readings,
@@ -181,16 +205,16 @@ pub(crate) enum RouteArg {
 #[derive(Debug, Args, Clone, Copy)]
 pub(crate) struct SetupArgs {
     /// Distance to the corner, metres.
-    #[arg(long, default_value_t = 10.0)]
+    #[arg(long, allow_negative_numbers = true, default_value_t = 10.0)]
     pub(crate) distance: f64,
     /// Seconds per scan (τ).
-    #[arg(long, default_value_t = 2.0)]
+    #[arg(long, allow_negative_numbers = true, default_value_t = 2.0)]
     pub(crate) scan_time: f64,
     /// Seconds per move between stops.
-    #[arg(long, default_value_t = 0.0)]
+    #[arg(long, allow_negative_numbers = true, default_value_t = 0.0)]
     pub(crate) move_time: f64,
     /// Metres per second (v).
-    #[arg(long, default_value_t = 0.5)]
+    #[arg(long, allow_negative_numbers = true, default_value_t = 0.5)]
     pub(crate) speed: f64,
 }
 
@@ -231,7 +255,7 @@ pub(crate) struct PolicyArgs {
     #[arg(long)]
     pub(crate) truth: Option<String>,
     /// Stop spacing on the circle, degrees.
-    #[arg(long, default_value_t = 5.0)]
+    #[arg(long, allow_negative_numbers = true, default_value_t = 5.0)]
     pub(crate) step_deg: f64,
     /// How the transition probabilities are read.
     #[arg(long, value_enum, default_value_t = ReadingArg::Conditional)]
@@ -254,11 +278,11 @@ pub(crate) struct SimulateArgs {
     /// What the world draws θ from (defaults to the belief).
     #[arg(long)]
     pub(crate) truth: Option<String>,
-    /// Monte Carlo samples.
-    #[arg(long, default_value_t = 1000)]
+    /// Monte Carlo samples per strategy (soft limit 10^7).
+    #[arg(long, default_value_t = 1000, allow_negative_numbers = true, value_parser = count_at_least(1))]
     pub(crate) samples: usize,
     /// MDP stop spacing, degrees.
-    #[arg(long, default_value_t = 5.0)]
+    #[arg(long, allow_negative_numbers = true, default_value_t = 5.0)]
     pub(crate) step_deg: f64,
     #[command(flatten)]
     pub(crate) setup: SetupArgs,
@@ -272,9 +296,10 @@ pub(crate) struct ExploreArgs {
     /// or a folder of them: a sweep in parallel that writes CSV (to --out, default sweep.csv).
     #[arg(long)]
     pub(crate) env: PathBuf,
-    /// The strategy: depth_first (the paper's algorithm, at most r + 1 scans),
-    /// nearest_frontier (Yamauchi-style frontiers, windows as frontiers) or greedy_nbv (most
-    /// predicted new area per second of cost); `all` in a sweep.
+    /// The strategy: depth_first (the paper's algorithm, at most r + 1 scans), range_limited
+    /// (the paper's algorithm for a sensor range; needs --range), nearest_frontier
+    /// (Yamauchi-style frontiers, windows as frontiers) or greedy_nbv (most predicted new area
+    /// per second of cost); `all` in a sweep.
     #[arg(long, default_value = "depth_first")]
     pub(crate) strategy: String,
     /// The start "X,Y" (default: the file's start, its first query point, or a point inside the
@@ -282,27 +307,27 @@ pub(crate) struct ExploreArgs {
     #[arg(long, allow_hyphen_values = true)]
     pub(crate) start: Option<String>,
     /// Seconds per scan.
-    #[arg(long, default_value_t = 1.0)]
+    #[arg(long, allow_negative_numbers = true, default_value_t = 1.0)]
     pub(crate) scan_time: f64,
     /// Seconds per move.
-    #[arg(long, default_value_t = 0.0)]
+    #[arg(long, allow_negative_numbers = true, default_value_t = 0.0)]
     pub(crate) move_time: f64,
     /// Metres per second.
-    #[arg(long, default_value_t = 1.0)]
+    #[arg(long, allow_negative_numbers = true, default_value_t = 1.0)]
     pub(crate) speed: f64,
     /// Write the scene (domain, regions, path, numbered scans) as SVG.
     #[arg(long)]
     pub(crate) svg: Option<PathBuf>,
     /// Limit the sensor to R metres (the paper's restricted visibility polygons); the bound
     /// becomes Lemma 4's and the lower bound area / (πR²).
-    #[arg(long)]
+    #[arg(long, allow_negative_numbers = true)]
     pub(crate) range: Option<f64>,
     /// Compute the offline greedy reference for domains up to this many vertices.
-    #[arg(long, default_value_t = 1000)]
+    #[arg(long, default_value_t = 1000, allow_negative_numbers = true, value_parser = count_at_least(0))]
     pub(crate) greedy_max_vertices: usize,
     /// Search for the exact offline optimum (integer programming over candidate viewpoints)
     /// for domains up to this many vertices.
-    #[arg(long, default_value_t = 400)]
+    #[arg(long, default_value_t = 400, allow_negative_numbers = true, value_parser = count_at_least(0))]
     pub(crate) optimum_max_vertices: usize,
     /// Seconds for the optimum's search; when they run out, the best set found, the best
     /// proven lower bound and the gap are reported (0: skip the search).
@@ -326,37 +351,43 @@ pub(crate) struct RoiArgs {
     /// region), or a polygon (GeoJSON, WKT, .pol) explored through its outer grid approximation.
     #[arg(long, conflicts_with_all = ["random", "resume"])]
     pub(crate) grid: Option<PathBuf>,
-    /// A random region of this many 4-connected cells (seeded by --seed).
-    #[arg(long, conflicts_with = "resume")]
+    /// A random region of this many 4-connected cells (seeded by --seed; soft limit 4·10^6).
+    #[arg(long, conflicts_with = "resume", allow_negative_numbers = true, value_parser = count_at_least(1))]
     pub(crate) random: Option<usize>,
-    /// Robots (R).
-    #[arg(long, default_value_t = 1, conflicts_with = "resume")]
+    /// Robots (R; soft limit 10,000).
+    #[arg(long, default_value_t = 1, conflicts_with = "resume", allow_negative_numbers = true, value_parser = count_at_least(1))]
     pub(crate) robots: usize,
     /// Robot speed S_r, m/s.
-    #[arg(long, default_value_t = 1.0, conflicts_with = "resume")]
+    #[arg(long, allow_negative_numbers = true, default_value_t = 1.0, conflicts_with = "resume")]
     pub(crate) robot_speed: f64,
     /// Speed S_p at which the region translates, m/s (must be below S_r).
-    #[arg(long, default_value_t = 0.0, conflicts_with = "resume")]
+    #[arg(long, allow_negative_numbers = true, default_value_t = 0.0, conflicts_with = "resume")]
     pub(crate) roi_speed: f64,
     /// Heading of the region's drift, degrees counter-clockwise from east (the grid's +x).
     #[arg(long, default_value_t = 0.0, allow_hyphen_values = true, conflicts_with = "resume")]
     pub(crate) roi_heading_deg: f64,
     /// Flight seconds per battery: a robot flies home to swap before it would run out, then
     /// resumes from the vertex it left (the field experiment).
-    #[arg(long, conflicts_with = "resume")]
+    #[arg(long, allow_negative_numbers = true, conflicts_with = "resume")]
     pub(crate) battery_s: Option<f64>,
-    /// Write the mission state here after every step (atomically), for --resume.
+    /// Write the mission state here (atomically) at most every --state-interval seconds and at
+    /// the end, for --resume.
     #[arg(long, conflicts_with = "resume")]
     pub(crate) state: Option<PathBuf>,
+    /// Seconds of wall clock between two writes of --state (0: after every step; each write
+    /// costs time in proportion to the mission).
+    #[arg(long, allow_negative_numbers = true, default_value_t = 1.0)]
+    pub(crate) state_interval: f64,
     /// Carry on with the mission saved in STATE (and keep writing it there); the mission's
-    /// settings come from STATE, so only --out, --svg and --format may be given with it.
+    /// settings, and its --trace, come from STATE, so only --out, --svg, --trace,
+    /// --state-interval and --format may be given with it.
     #[arg(long, value_name = "STATE")]
     pub(crate) resume: Option<PathBuf>,
     /// Side of a cell, metres (for polygons, the grid's cell; otherwise the scale).
-    #[arg(long, default_value_t = 1.0, conflicts_with = "resume")]
+    #[arg(long, allow_negative_numbers = true, default_value_t = 1.0, conflicts_with = "resume")]
     pub(crate) cell_m: f64,
     /// Pixels per cell side, for masks.
-    #[arg(long, default_value_t = 1, conflicts_with = "resume")]
+    #[arg(long, default_value_t = 1, conflicts_with = "resume", allow_negative_numbers = true, value_parser = count_at_least(1))]
     pub(crate) cell_px: usize,
     /// For masks: the region is dark (grey below 128) instead of light.
     #[arg(long, conflicts_with = "resume")]
@@ -368,8 +399,8 @@ pub(crate) struct RoiArgs {
     /// and a vote over --frames frames per scan (conservative marking).
     #[arg(long, conflicts_with = "resume")]
     pub(crate) camera: bool,
-    /// Frames per scan with --camera (the paper: 5, voted 3 of 5).
-    #[arg(long, default_value_t = 5, conflicts_with = "resume")]
+    /// Frames per scan with --camera, 1 to 99 (the paper: 5, voted 3 of 5).
+    #[arg(long, default_value_t = 5, conflicts_with = "resume", requires = "camera", allow_negative_numbers = true, value_parser = count_at_least(1))]
     pub(crate) frames: usize,
     /// Sweep this box of cells ROW0,COL0,ROW1,COL1 lawn-mower fashion until the region is first
     /// seen (needs --launch).
@@ -379,14 +410,14 @@ pub(crate) struct RoiArgs {
     #[arg(long, allow_hyphen_values = true, conflicts_with = "resume")]
     pub(crate) launch: Option<String>,
     /// Seconds per scan (the paper's model: 0).
-    #[arg(long, default_value_t = 0.0, conflicts_with = "resume")]
+    #[arg(long, allow_negative_numbers = true, default_value_t = 0.0, conflicts_with = "resume")]
     pub(crate) scan_time: f64,
     /// Seconds per move (the paper's model: 0).
-    #[arg(long, default_value_t = 0.0, conflicts_with = "resume")]
+    #[arg(long, allow_negative_numbers = true, default_value_t = 0.0, conflicts_with = "resume")]
     pub(crate) move_time: f64,
     /// Write every move and scan to this file as it happens, one JSON object per line with the
-    /// robot's index (flushed per event). A resumed mission appends; the events of the step a
-    /// crash interrupted may then appear twice.
+    /// robot's index (flushed per event). The state file remembers it: a resumed mission cuts
+    /// the trace back to the last state written and carries it on, so no event appears twice.
     #[arg(long)]
     pub(crate) trace: Option<PathBuf>,
     /// Leave each robot's cells, times and scans out of the run record (large regions: the
@@ -417,11 +448,12 @@ pub(crate) struct GenerateArgs {
     /// The family.
     #[arg(value_enum)]
     pub(crate) family: Family,
-    /// Size: spiral turns, star spikes, comb teeth, office rooms per side, forest pillars.
-    #[arg(long, default_value_t = 6)]
+    /// Size: spiral turns, star spikes, comb teeth, office rooms per side, forest pillars (soft
+    /// limits in the README).
+    #[arg(long, default_value_t = 6, allow_negative_numbers = true, value_parser = count_at_least(1))]
     pub(crate) size: usize,
     /// Office desks.
-    #[arg(long, default_value_t = 0)]
+    #[arg(long, default_value_t = 0, allow_negative_numbers = true, value_parser = count_at_least(0))]
     pub(crate) desks: usize,
     /// The GeoJSON to write (with the start as its "start" property).
     #[arg(short = 'o', long = "output")]
@@ -446,7 +478,7 @@ pub(crate) struct ImportArgs {
     #[arg(long, allow_hyphen_values = true)]
     pub(crate) start: Option<String>,
     /// ROS maps: enclosed obstacle specks below this area (square metres) are dropped.
-    #[arg(long, default_value_t = 0.05)]
+    #[arg(long, allow_negative_numbers = true, default_value_t = 0.05)]
     pub(crate) min_speck_area: f64,
 }
 
@@ -462,10 +494,10 @@ pub(crate) struct VisibilityArgs {
     #[arg(long)]
     pub(crate) queries: Option<PathBuf>,
     /// Sensor range R (metres): the region within R, with exact arcs.
-    #[arg(long)]
+    #[arg(long, allow_negative_numbers = true)]
     pub(crate) range: Option<f64>,
     /// Largest distance between an arc and its chords in the output polygon (default R/10⁴).
-    #[arg(long)]
+    #[arg(long, allow_negative_numbers = true)]
     pub(crate) arc_tolerance: Option<f64>,
 }
 
@@ -476,12 +508,14 @@ pub(crate) struct ReproduceArgs {
     /// views-benchmarks, roi-fig-7, or all.
     pub(crate) id: String,
     /// Monte Carlo samples where the paper used sampling (roi-fig-7: trials per point, at
-    /// most the paper's 100).
-    #[arg(long, default_value_t = 1000)]
+    /// most the paper's 100; soft limit 10^7).
+    #[arg(long, default_value_t = 1000, allow_negative_numbers = true, value_parser = count_at_least(1))]
     pub(crate) samples: usize,
-    /// The folder of benchmark environments (*.pol, ROS *.yaml) for views-benchmarks.
-    #[arg(long, default_value = stopscan::experiment::DEFAULT_DATA)]
-    pub(crate) data: PathBuf,
+    /// The folder of benchmark environments (*.pol, ROS *.yaml) for views-benchmarks (default:
+    /// $STOPSCAN_DATA, else the shared data beside the checkout stopscan was built from, else
+    /// beside the executable, else ../shared/data).
+    #[arg(long)]
+    pub(crate) data: Option<PathBuf>,
 }
 
 #[derive(Debug, Clone, Copy, PartialEq, Eq, ValueEnum)]
@@ -506,11 +540,11 @@ pub(crate) struct BenchArgs {
     /// What to measure.
     #[arg(value_enum)]
     pub(crate) target: BenchTarget,
-    /// Problem size: stops (mdp, ratio) or distances (circle).
-    #[arg(long)]
+    /// Problem size: stops (mdp, ratio), distances (circle), floors (explore) or cells (roi).
+    #[arg(long, allow_negative_numbers = true, value_parser = count_at_least(1))]
     pub(crate) n: Option<usize>,
-    /// Timed repetitions; the median is reported.
-    #[arg(long, default_value_t = 15)]
+    /// Timed repetitions; the median is reported (at most 1,000).
+    #[arg(long, default_value_t = 15, allow_negative_numbers = true, value_parser = count_at_least(1))]
     pub(crate) repeat: usize,
     /// MDP solver.
     #[arg(long, value_enum, default_value_t = SolverArg::Backward)]
@@ -522,9 +556,9 @@ pub(crate) struct BenchArgs {
     #[arg(long)]
     pub(crate) queries: Option<PathBuf>,
     /// Sensor range for `bench visibility` (range-limited queries).
-    #[arg(long)]
+    #[arg(long, allow_negative_numbers = true)]
     pub(crate) range: Option<f64>,
     /// Robots for `bench roi`.
-    #[arg(long, default_value_t = 64)]
+    #[arg(long, default_value_t = 64, allow_negative_numbers = true, value_parser = count_at_least(1))]
     pub(crate) robots: usize,
 }

@@ -3,20 +3,24 @@
 use std::io::Write;
 use std::path::{Path, PathBuf};
 
-use anyhow::{Context, bail};
+use anyhow::bail;
 use serde::Serialize;
 use serde_json::json;
 use stopscan::experiment::corner::{self as exp, LineupOptions};
+use stopscan::kernel::Num;
 use stopscan::offline::corner::{expected, limit_ratio, optimal::optimal_scans_with, worst_case};
 use stopscan::protocol::CostModel;
 use stopscan::protocol::corner::{AngleDistribution, CornerSetup, LastStep, Route};
 use stopscan::render::{LineChart, Series, write_chart, write_policy_image};
 use stopscan::strategy::corner::mdp::{CornerMdp, Memory, Reading};
 use stopscan::strategy::corner::registry;
-use stopscan::strategy::corner::{ExprecReading, StopList, circle};
+use stopscan::strategy::corner::{ExprecReading, StopList, circle, unirec_stops};
 
 use crate::cli::{self, CornerCommand, Global, RatioStrategy, Readings};
-use crate::output::{Table, emit, num, write_json_atomic};
+use crate::limits;
+use crate::output::{
+    Table, emit, ensure_dir, num, write_atomic, write_json_atomic, write_stem_atomic,
+};
 
 pub(crate) fn run(command: &CornerCommand, g: &Global) -> anyhow::Result<()> {
     match command {
@@ -33,7 +37,7 @@ pub(crate) fn run(command: &CornerCommand, g: &Global) -> anyhow::Result<()> {
 
 fn positive(name: &str, v: f64) -> anyhow::Result<f64> {
     if !(v.is_finite() && v > 0.0) {
-        bail!("--{name} must be a finite positive number, got {v}");
+        bail!("--{name} must be a finite positive number, got {}", Num(v));
     }
     Ok(v)
 }
@@ -43,15 +47,46 @@ fn picture_dir(g: &Global) -> anyhow::Result<Option<PathBuf>> {
     match &g.out {
         None => Ok(None),
         Some(p) => {
-            std::fs::create_dir_all(p)
-                .with_context(|| format!("cannot create output directory {}", p.display()))?;
+            ensure_dir(p)?;
             Ok(Some(p.clone()))
         }
     }
 }
 
 fn save_chart(dir: &Path, name: &str, chart: &LineChart) -> anyhow::Result<Vec<String>> {
-    Ok(write_chart(chart, &dir.join(name))?.iter().map(|p| p.display().to_string()).collect())
+    Ok(write_stem_atomic(&dir.join(name), |stem| write_chart(chart, stem))?
+        .iter()
+        .map(|p| p.display().to_string())
+        .collect())
+}
+
+fn save_policy_image(
+    dir: &Path,
+    name: &str,
+    title: &str,
+    image: &[Vec<stopscan::strategy::corner::mdp::Cell>],
+) -> anyhow::Result<Vec<String>> {
+    Ok(write_stem_atomic(&dir.join(name), |stem| write_policy_image(image, title, stem))?
+        .iter()
+        .map(|p| p.display().to_string())
+        .collect())
+}
+
+/// Refuses (unless `--allow-large`) a UNIREC stop list above [`limits::STOPS`] before it is
+/// built; the other strategies have logarithmically many stops.
+fn check_unirec(g: &Global, flag: &str, delta: f64) -> anyhow::Result<()> {
+    let stops = unirec_stops(delta);
+    limits::soft(
+        g,
+        stops,
+        limits::STOPS,
+        || format!("{flag} gives {} UNIREC stops", limits::count(stops)),
+        "16 bytes and about 45 ns per stop",
+        &format!(
+            "use δ ≥ {}",
+            limits::at_least(std::f64::consts::FRAC_PI_2 / limits::STOPS as f64)
+        ),
+    )
 }
 
 fn circle_cmd(d: f64, g: &Global) -> anyhow::Result<()> {
@@ -68,7 +103,7 @@ fn circle_cmd(d: f64, g: &Global) -> anyhow::Result<()> {
             })
             .collect();
         let chart = LineChart {
-            title: format!("Circle strategy at d = {d}: c = {:.6}", s.ratio),
+            title: format!("Circle strategy at d = {}: c = {:.6}", Num(d), s.ratio),
             subtitle: String::new(),
             x_label: "x (start at 0, corner at d)".into(),
             y_label: "y".into(),
@@ -88,8 +123,10 @@ fn circle_cmd(d: f64, g: &Global) -> anyhow::Result<()> {
     emit(g, &value, false, |w| {
         writeln!(
             w,
-            "circle strategy at d = {d}: ratio c = {:.6}, {} intermediate scans (+1 at the corner)",
-            s.ratio, s.scans
+            "circle strategy at d = {}: ratio c = {:.6}, {} intermediate scans (+1 at the corner)",
+            Num(d),
+            s.ratio,
+            s.scans
         )?;
         let mut t = Table::new(&["scan", "step", "x", "y", "angle at corner (deg)"]);
         for (k, ((x, p), a)) in s.steps.iter().zip(&s.scan_points).zip(&s.angles).enumerate() {
@@ -140,13 +177,17 @@ fn optimal(d: f64, k: usize, g: &Global) -> anyhow::Result<()> {
     emit(g, &value, true, |w| {
         writeln!(
             w,
-            "global optimum at d = {d} with at most {k} intermediate scans: ratio {:.6} with {} (exact for the points below)",
-            o.ratio, o.scans
+            "global optimum at d = {} with at most {k} intermediate scans: ratio {:.6} with {} (exact for the points below)",
+            Num(d),
+            o.ratio,
+            o.scans
         )?;
         writeln!(
             w,
-            "circle strategy at d = {d}: ratio {:.6} with {} scans",
-            o.circle_ratio, o.circle_scans
+            "circle strategy at d = {}: ratio {:.6} with {} scans",
+            Num(d),
+            o.circle_ratio,
+            o.circle_scans
         )?;
         let mut t = Table::new(&["scan", "x", "y"]);
         for (i, p) in o.scan_points.iter().enumerate() {
@@ -160,7 +201,7 @@ fn optimal(d: f64, k: usize, g: &Global) -> anyhow::Result<()> {
 fn collapse(c: f64, d: Option<f64>, g: &Global) -> anyhow::Result<()> {
     let c = positive("ratio", c)?;
     if c <= 1.0 {
-        bail!("--ratio must exceed 1, got {c}");
+        bail!("--ratio must exceed 1, got {}", Num(c));
     }
     let d = match d {
         Some(d) => positive("distance", d)?,
@@ -171,7 +212,9 @@ fn collapse(c: f64, d: Option<f64>, g: &Global) -> anyhow::Result<()> {
     emit(g, &r, true, |w| {
         writeln!(
             w,
-            "c = {c} at d = {d}: {} after {} steps; farthest from the start {:.6} (Theorem 1 bound 1/(2 − c) = {})",
+            "c = {} at d = {}: {} after {} steps; farthest from the start {:.6} (Theorem 1 bound 1/(2 − c) = {})",
+            Num(c),
+            Num(d),
             if r.reached { "reaches the corner" } else { "collapses" },
             r.steps,
             r.farthest,
@@ -198,6 +241,36 @@ fn build_options(r: Readings) -> registry::BuildOptions {
     }
 }
 
+/// `--stops-deg` checked in degrees, as given: each stop positive, finite and above the one
+/// before, and none after one that already reaches the corner (90°). Positions are 1-based.
+fn check_stops_deg(stops: &[f64]) -> anyhow::Result<()> {
+    for (k, &a) in stops.iter().enumerate() {
+        if !(a.is_finite() && a > 0.0) {
+            bail!("--stops-deg: stop {} is {}°; stops must be finite and positive", k + 1, Num(a));
+        }
+        if k > 0 {
+            let prev = stops[k - 1];
+            if prev >= 90.0 {
+                bail!(
+                    "--stops-deg: stop {} ({}°) follows stop {k} ({}°), which already reaches the corner (90°); end the list there",
+                    k + 1,
+                    Num(a),
+                    Num(prev)
+                );
+            }
+            if a <= prev {
+                bail!(
+                    "--stops-deg: stop {} ({}°) is not above stop {k} ({}°); give increasing angles",
+                    k + 1,
+                    Num(a),
+                    Num(prev)
+                );
+            }
+        }
+    }
+    Ok(())
+}
+
 fn stop_list(
     strategy: RatioStrategy,
     delta: f64,
@@ -216,6 +289,7 @@ fn stop_list(
             if stops_deg.is_empty() {
                 bail!("--strategy stops needs --stops-deg A,B,C (degrees, increasing)");
             }
+            check_stops_deg(stops_deg)?;
             let rad: Vec<f64> = stops_deg.iter().map(|d| d.to_radians()).collect();
             StopList::from_nominal(&rad, o.route, o.last_step)?
         }
@@ -224,6 +298,9 @@ fn stop_list(
 
 fn ratio(a: &cli::RatioArgs, g: &Global) -> anyhow::Result<()> {
     let delta = positive("delta", a.delta)?;
+    if a.strategy == RatioStrategy::Unirec {
+        check_unirec(g, &format!("--delta {}", Num(delta)), delta)?;
+    }
     let list = stop_list(a.strategy, delta, &a.stops_deg, a.readings)?;
     // Only δ matters: normalise τ = v = 1, D = 1/δ.
     let setup = CornerSetup::new(1.0 / delta, CostModel::default())?;
@@ -237,7 +314,7 @@ fn ratio(a: &cli::RatioArgs, g: &Global) -> anyhow::Result<()> {
         "explanation": "worst_ratio is the strict supremum of cost/OPT over θ in (0, π], approached as θ decreases to theta_at_worst (radians); asymptotic_ratio is the smallest c with cost ≤ c·OPT + b for all θ, with the additive constant b = sqrt(τ·D/v) in units of τ, which absorbs a bounded number of scans near θ = 0 and vanishes against OPT as δ → 0; limit_ratio is the papers' closed-form value as δ → 0",
     });
     emit(g, &value, true, |w2| {
-        writeln!(w2, "{name} at δ = {delta} ({} stops)", list.len())?;
+        writeln!(w2, "{name} at δ = {} ({} stops)", Num(delta), list.len())?;
         let mut t = Table::new(&["quantity", "value", "θ (deg)"]);
         t.row(vec![
             "worst ratio (strict sup over θ > 0)".into(),
@@ -293,12 +370,9 @@ fn policy(a: &cli::PolicyArgs, g: &Global) -> anyhow::Result<()> {
             "{} optimal policy, belief {}, δ = {}°",
             if memory == Memory::Last { "MDP2" } else { "MDP1" },
             a.belief,
-            a.step_deg
+            Num(a.step_deg)
         );
-        files = write_policy_image(&p.image, &title, &dir.join(name))?
-            .iter()
-            .map(|p| p.display().to_string())
-            .collect();
+        files = save_policy_image(&dir, name, &title, &p.image)?;
     }
     let value = json!({
         "memory": format!("{:?}", a.memory).to_lowercase(), "belief": belief, "truth": truth, "step_deg": a.step_deg, "stops": p.stops, "states": p.states,
@@ -334,9 +408,14 @@ fn simulate(a: &cli::SimulateArgs, g: &Global) -> anyhow::Result<()> {
         Some(t) => AngleDistribution::parse(t)?,
         None => belief.clone(),
     };
-    if a.samples == 0 {
-        bail!("--samples must be positive");
-    }
+    limits::soft(
+        g,
+        a.samples as f64,
+        limits::SAMPLES,
+        || format!("--samples {} per strategy", a.samples),
+        "about 2 µs per sample; the exact expectation is printed beside the estimate",
+        "",
+    )?;
     let mut names: Vec<String> = a.strategy.iter().map(|s| s.trim().to_lowercase()).collect();
     if names.iter().any(|n| n == "all") {
         names = registry::names().map(String::from).collect();
@@ -344,16 +423,21 @@ fn simulate(a: &cli::SimulateArgs, g: &Global) -> anyhow::Result<()> {
     let opts =
         registry::BuildOptions { mdp_step: a.step_deg.to_radians(), ..build_options(a.readings) };
     let delta = setup.delta();
+    if names.iter().any(|n| n == "unirec") {
+        check_unirec(g, &format!("unirec at δ = τv/D = {}", Num(delta)), delta)?;
+    }
+    let bar = crate::output::bar((a.samples * names.len()) as u64, "samples");
     let mut results = Vec::new();
     for (k, name) in names.iter().enumerate() {
         let list = registry::build(name, &setup, &belief, &opts)?;
         let e = expected(&list, &setup, &truth);
-        let mc = exp::monte_carlo(
+        let mc = exp::monte_carlo_with(
             &list,
             &setup,
             &truth,
             a.samples,
             stopscan::experiment::sample_seed(g.seed, k as u64),
+            &|n| bar.inc(n),
         )?;
         let wc = worst_case(&list, &setup);
         results.push(json!({
@@ -361,6 +445,7 @@ fn simulate(a: &cli::SimulateArgs, g: &Global) -> anyhow::Result<()> {
             "monte_carlo": mc, "worst_ratio": wc.worst_ratio, "stops": list.len(),
         }));
     }
+    bar.finish_and_clear();
     let value = json!({
         "belief": belief, "truth": truth, "samples": a.samples, "seed": g.seed, "distance": setup.distance,
         "cost_model": setup.cost, "delta": delta, "results": results, "stopscan_version": stopscan::VERSION,
@@ -386,8 +471,13 @@ fn simulate(a: &cli::SimulateArgs, g: &Global) -> anyhow::Result<()> {
         }
         writeln!(
             w,
-            "{} samples, seed {}, D = {} m, τ = {} s, v = {} m/s, δ = {:.4}",
-            a.samples, g.seed, setup.distance, setup.cost.scan_time, setup.cost.speed, delta
+            "{} samples, seed {}, D = {} m, τ = {} s, v = {} m/s, δ = {}",
+            a.samples,
+            g.seed,
+            Num(setup.distance),
+            Num(setup.cost.scan_time),
+            Num(setup.cost.speed),
+            num(Some(delta), 4)
         )?;
         t.write(w)
     })
@@ -402,50 +492,63 @@ struct ReproduceOut<'a> {
     stopscan_version: &'static str,
 }
 
+/// Writes a reproduction's charts, images, tables and JSON into `dir`; returns their paths.
+fn write_reproduction(
+    dir: &Path,
+    id: &str,
+    r: &stopscan::experiment::Reproduction,
+    seed: u64,
+) -> anyhow::Result<Vec<String>> {
+    let mut files = Vec::new();
+    for (name, chart) in &r.charts {
+        files.extend(save_chart(dir, name, chart)?);
+    }
+    for (name, title, image) in &r.images {
+        files.extend(save_policy_image(dir, name, title, image)?);
+    }
+    for (name, text) in &r.tables {
+        let path = dir.join(name);
+        write_atomic(&path, |w| w.write_all(text.as_bytes()))?;
+        files.push(path.display().to_string());
+    }
+    let path = dir.join(format!("{id}.json"));
+    let out = ReproduceOut { r, files: files.clone(), seed, stopscan_version: stopscan::VERSION };
+    write_json_atomic(&path, &out)?;
+    files.push(path.display().to_string());
+    Ok(files)
+}
+
 pub(crate) fn reproduce(a: &cli::ReproduceArgs, g: &Global) -> anyhow::Result<()> {
     let ids: Vec<&str> =
         if a.id == "all" { stopscan::experiment::ids() } else { vec![a.id.as_str()] };
+    limits::soft(
+        g,
+        a.samples as f64,
+        limits::SAMPLES,
+        || format!("--samples {}", a.samples),
+        "about 2 µs per sample and strategy",
+        "",
+    )?;
     let mut outs = Vec::new();
     for id in ids {
-        let r = match stopscan::experiment::reproduce_with_data(id, a.samples, g.seed, &a.data) {
+        let data =
+            if id == "views-benchmarks" { data_dir(a.data.as_deref()) } else { Ok(PathBuf::new()) };
+        let r = match data.and_then(|d| {
+            stopscan::experiment::reproduce_with_data(id, a.samples, g.seed, &d)
+                .map_err(anyhow::Error::from)
+        }) {
             Ok(r) => r,
             // `all` without the benchmark data still reproduces everything else.
             Err(e) if a.id == "all" && id == "views-benchmarks" => {
                 eprintln!("views-benchmarks skipped: {e}");
                 continue;
             }
-            Err(e) => return Err(e.into()),
+            Err(e) => return Err(e),
         };
-        let mut files = Vec::new();
-        if let Some(dir) = picture_dir(g)? {
-            for (name, chart) in &r.charts {
-                files.extend(save_chart(&dir, name, chart)?);
-            }
-            for (name, title, image) in &r.images {
-                files.extend(
-                    write_policy_image(image, title, &dir.join(name))?
-                        .iter()
-                        .map(|p| p.display().to_string()),
-                );
-            }
-            for (name, text) in &r.tables {
-                let path = dir.join(name);
-                std::fs::write(&path, text)
-                    .with_context(|| format!("cannot write {}", path.display()))?;
-                files.push(path.display().to_string());
-            }
-            let path = dir.join(format!("{id}.json"));
-            write_json_atomic(
-                &path,
-                &ReproduceOut {
-                    r: &r,
-                    files: files.clone(),
-                    seed: g.seed,
-                    stopscan_version: stopscan::VERSION,
-                },
-            )?;
-            files.push(path.display().to_string());
-        }
+        let files = match picture_dir(g)? {
+            Some(dir) => write_reproduction(&dir, id, &r, g.seed)?,
+            None => Vec::new(),
+        };
         outs.push((r, files));
     }
     let stdout = std::io::stdout();
@@ -528,11 +631,45 @@ fn rows_table(r: &stopscan::experiment::Reproduction) -> Table {
     t
 }
 
+/// The folder of benchmark environments for `views-benchmarks`: `--data` as given (an error
+/// if it is missing), else the first that exists of `$STOPSCAN_DATA`, the shared data beside
+/// the checkout this binary was built from, beside the executable (any ancestor's
+/// `shared/data`), and `../shared/data` from the current directory. When none exists, the
+/// error lists what was tried.
+pub(crate) fn data_dir(given: Option<&Path>) -> anyhow::Result<PathBuf> {
+    if let Some(d) = given {
+        if !d.is_dir() {
+            bail!("--data {}: no such directory", d.display());
+        }
+        return Ok(d.to_path_buf());
+    }
+    if let Some(d) = std::env::var_os("STOPSCAN_DATA").map(PathBuf::from) {
+        if !d.is_dir() {
+            bail!("STOPSCAN_DATA={}: no such directory", d.display());
+        }
+        return Ok(d);
+    }
+    let built = Path::new(env!("CARGO_MANIFEST_DIR")).join("../../../shared/data");
+    let exe = std::env::current_exe().and_then(std::fs::canonicalize).ok();
+    let beside_exe = exe.iter().flat_map(|e| e.ancestors().skip(1).map(|a| a.join("shared/data")));
+    let cwd = PathBuf::from(stopscan::experiment::DEFAULT_DATA);
+    if let Some(found) =
+        std::iter::once(built.clone()).chain(beside_exe).chain([cwd]).find(|p| p.is_dir())
+    {
+        return Ok(found);
+    }
+    bail!(
+        "no benchmark data for views-benchmarks: tried $STOPSCAN_DATA (unset), {} (beside the checkout stopscan was built from), shared/data in every folder above {} and {} (from the current directory); pass --data DIR",
+        built.display(),
+        exe.map_or_else(|| "the executable".into(), |e| e.display().to_string()),
+        stopscan::experiment::DEFAULT_DATA
+    )
+}
+
 pub(crate) fn demo(g: &Global) -> anyhow::Result<()> {
     let exp::Demo { circles, strategies: four, chart } = exp::demo()?;
     let dir = g.out.clone().unwrap_or_else(|| PathBuf::from("stopscan-out"));
-    std::fs::create_dir_all(&dir)
-        .with_context(|| format!("cannot create output directory {}", dir.display()))?;
+    ensure_dir(&dir)?;
     let files = save_chart(&dir, "circle-ratio", &chart)?;
     let setup = exp::paper_setup(2.0);
     let value = json!({
@@ -546,7 +683,8 @@ pub(crate) fn demo(g: &Global) -> anyhow::Result<()> {
         },
         "files": files, "stopscan_version": stopscan::VERSION,
     });
-    write_json_atomic(&dir.join("run.json"), &value)?;
+    // Not run.json: that is the main job's run record, in the same default folder.
+    write_json_atomic(&dir.join("corner-demo.json"), &value)?;
     let stdout = std::io::stdout();
     let mut w = stdout.lock();
     if g.format == cli::Format::Json {
@@ -578,7 +716,7 @@ pub(crate) fn demo(g: &Global) -> anyhow::Result<()> {
         t.row(vec![n.clone(), num(Some(*e), 3), num(Some(*r), 4)]);
     }
     t.write(&mut w)?;
-    writeln!(w, "\nwrote {}", dir.join("run.json").display())?;
+    writeln!(w, "\nwrote {}", dir.join("corner-demo.json").display())?;
     for f in &files {
         writeln!(w, "wrote {f}")?;
     }
@@ -599,5 +737,16 @@ mod tests {
         assert_eq!(stop_list(RatioStrategy::Unirec, 0.5, &[], r).unwrap().len(), 4);
         assert!(stop_list(RatioStrategy::Stops, 0.5, &[], r).is_err());
         assert_eq!(stop_list(RatioStrategy::Stops, 0.5, &[30.0, 60.0], r).unwrap().len(), 3);
+    }
+
+    #[test]
+    fn the_shared_data_is_found_from_the_checkout() {
+        let built = Path::new(env!("CARGO_MANIFEST_DIR")).join("../../../shared/data");
+        if std::env::var_os("STOPSCAN_DATA").is_none() && built.is_dir() {
+            // Whatever the current directory: the path is fixed at compile time.
+            assert_eq!(data_dir(None).unwrap(), built);
+        }
+        let e = data_dir(Some(Path::new("/nonexistent"))).unwrap_err().to_string();
+        assert!(e.contains("/nonexistent"), "{e}");
     }
 }

@@ -4,17 +4,18 @@ use std::io::Write;
 use std::path::{Path, PathBuf};
 
 use anyhow::{Context, bail};
+use stopscan::experiment::polygon::{SweepInput, SweepRow};
 use stopscan::generate::{self, Instance};
 use stopscan::geometry::{Domain, Frame};
 use stopscan::io::run_record::RunRecord;
-use stopscan::kernel::Point;
+use stopscan::kernel::{Num, Point};
 use stopscan::offline::polygon::ReferenceLimits;
 use stopscan::protocol::CostModel;
 use stopscan::sim::polygon::Reframe;
 use stopscan::world::polygon::PolygonWorld;
 
 use crate::cli::{ExploreArgs, Family, Format, GenerateArgs, Global};
-use crate::output::{Table, num, write_json_atomic};
+use crate::output::{Table, ensure_dir, num, write_atomic, write_json_atomic};
 use crate::visibility::parse_point;
 
 /// The built-in office floor (`stopscan generate office --size 6 --desks 16`), embedded.
@@ -86,7 +87,7 @@ fn explore(j: &Job) -> anyhow::Result<Outcome> {
     let input = |p: Point| j.frame.to_input(p);
     if world.scan(j.start).is_err() {
         let s = input(j.start);
-        bail!("the start ({}, {}) is outside the free space", s[0], s[1]);
+        bail!("the start ({}, {}) is outside the free space", Num(s[0]), Num(s[1]));
     }
     let mut progress = Progress::new();
     let result = match j.trace {
@@ -142,8 +143,13 @@ fn summary(w: &mut dyn Write, o: &RunRecord) -> std::io::Result<()> {
     let e = &o.environment;
     writeln!(
         w,
-        "{}: {} vertices, {} holes, r = {} reflex, free area {:.2} m²; strategy {}",
-        e.name, e.vertices, e.holes, e.reflex_vertices, e.free_area, o.strategy.name
+        "{}: {} vertices, {} holes, r = {} reflex, free area {} m²; strategy {}",
+        e.name,
+        e.vertices,
+        e.holes,
+        e.reflex_vertices,
+        num(Some(e.free_area), 2),
+        o.strategy.name
     )?;
     let mut t = Table::new(&["quantity", "value"]);
     let b = &o.bounds;
@@ -205,10 +211,7 @@ fn finish(
 ) -> anyhow::Result<()> {
     write_json_atomic(json_path, &o.record)?;
     if let Some(p) = svg_path {
-        if let Some(dir) = p.parent().filter(|d| !d.as_os_str().is_empty()) {
-            std::fs::create_dir_all(dir)?;
-        }
-        std::fs::write(p, &o.svg).with_context(|| format!("cannot write {}", p.display()))?;
+        write_atomic(p, |w| w.write_all(o.svg.as_bytes()))?;
     }
     let stdout = std::io::stdout();
     let mut w = stdout.lock();
@@ -243,12 +246,11 @@ pub(crate) fn main_job(g: &Global) -> anyhow::Result<()> {
         trace: None,
     })?;
     let dir = g.out.clone().unwrap_or_else(|| PathBuf::from("stopscan-out"));
-    std::fs::create_dir_all(&dir).with_context(|| format!("cannot create {}", dir.display()))?;
+    ensure_dir(&dir)?;
     finish(g, &o, &dir.join("run.json"), Some(&dir.join("scene.svg")))
 }
 
 fn sweep_dir(a: &ExploreArgs, g: &Global) -> anyhow::Result<()> {
-    use indicatif::{ProgressBar, ProgressStyle};
     let mut files: Vec<PathBuf> = std::fs::read_dir(&a.env)
         .with_context(|| format!("cannot read {}", a.env.display()))?
         .flatten()
@@ -264,14 +266,6 @@ fn sweep_dir(a: &ExploreArgs, g: &Global) -> anyhow::Result<()> {
     if files.is_empty() {
         bail!("{} holds no environment files (.geojson, .wkt, .pol, .yaml, .txt)", a.env.display());
     }
-    let mut inputs = Vec::new();
-    for f in &files {
-        let env = stopscan::io::read_environment(f)?;
-        let world = PolygonWorld::new(env.domain.clone())?;
-        let start = env.queries.first().copied().unwrap_or_else(|| world.interior_point());
-        let name = f.file_name().and_then(|n| n.to_str()).unwrap_or("?").to_string();
-        inputs.push((name, env.domain, start));
-    }
     let all: Vec<&str> = stopscan::strategy::polygon::REGISTRY.iter().map(|r| r.0).collect();
     let strategies: Vec<&str> = if a.strategy == "all" {
         all
@@ -280,14 +274,15 @@ fn sweep_dir(a: &ExploreArgs, g: &Global) -> anyhow::Result<()> {
     } else {
         bail!("unknown strategy {:?}; use one of: {}, or all", a.strategy, all.join(", "));
     };
-    let bar = ProgressBar::new((inputs.len() * strategies.len()) as u64);
-    bar.set_style(
-        ProgressStyle::with_template("{bar:40} {pos}/{len} runs {elapsed}")
-            .unwrap_or_else(|_| ProgressStyle::default_bar()),
-    );
+    check_range(&a.strategy, a.range)?;
+    if a.range.is_none() && strategies.contains(&"range_limited") {
+        eprintln!("warning: range_limited runs with unlimited range (no --range)");
+    }
     let cost = cost_of(a.scan_time, a.move_time, a.speed)?;
     let limits = limits_of(a)?;
-    let rows = stopscan::experiment::polygon::sweep(
+    let (inputs, loaded) = load_all(&files);
+    let bar = crate::output::bar((inputs.len() * strategies.len()) as u64, "runs");
+    let swept = stopscan::experiment::polygon::sweep(
         &inputs,
         &strategies,
         &cost,
@@ -298,17 +293,58 @@ fn sweep_dir(a: &ExploreArgs, g: &Global) -> anyhow::Result<()> {
         },
     );
     bar.finish_and_clear();
-    let out = g.out.clone().unwrap_or_else(|| PathBuf::from("sweep.csv"));
-    let tmp = out.with_extension("csv.tmp");
-    {
-        let mut w = csv::Writer::from_path(&tmp)
-            .with_context(|| format!("cannot write {}", tmp.display()))?;
-        for r in &rows {
-            w.serialize(r)?;
+    // Rows in file order; a file that did not load has one row per strategy with its error.
+    let k = strategies.len();
+    let mut rows = Vec::new();
+    for (f, l) in files.iter().zip(&loaded) {
+        match l {
+            Ok(i) => rows.extend_from_slice(&swept[i * k..(i + 1) * k]),
+            Err(e) => {
+                let name = f.file_name().and_then(|n| n.to_str()).unwrap_or("?");
+                rows.extend(strategies.iter().map(|s| SweepRow::failed(name, s, e.clone())));
+            }
         }
-        w.flush()?;
     }
-    std::fs::rename(&tmp, &out)?;
+    let out = g.out.clone().unwrap_or_else(|| PathBuf::from("sweep.csv"));
+    write_atomic(&out, |w| {
+        let mut csv = csv::Writer::from_writer(w);
+        for r in &rows {
+            csv.serialize(r)?;
+        }
+        csv.flush()
+    })?;
+    print_sweep(&rows, &out)
+}
+
+/// Loads every file of a sweep. A file that does not load does not end the sweep: it gets a
+/// warning, and its error goes into its rows (`Err`); the others are indices into the inputs.
+fn load_all(files: &[PathBuf]) -> (Vec<SweepInput>, Vec<Result<usize, String>>) {
+    let mut inputs = Vec::new();
+    let mut loaded = Vec::new();
+    for f in files {
+        let name = f.file_name().and_then(|n| n.to_str()).unwrap_or("?").to_string();
+        let env = stopscan::io::read_environment(f).map_err(anyhow::Error::from).and_then(|env| {
+            let world = PolygonWorld::new(env.domain.clone())?;
+            let start = env.queries.first().copied().unwrap_or_else(|| world.interior_point());
+            Ok((env.domain, start))
+        });
+        match env {
+            Ok((domain, start)) => {
+                loaded.push(Ok(inputs.len()));
+                inputs.push((name, domain, start));
+            }
+            Err(e) => {
+                let msg = crate::error_chain(&e);
+                eprintln!("warning: {name}: not swept: {msg}");
+                loaded.push(Err(msg));
+            }
+        }
+    }
+    (inputs, loaded)
+}
+
+/// The sweep's table.
+fn print_sweep(rows: &[SweepRow], out: &Path) -> anyhow::Result<()> {
     let stdout = std::io::stdout();
     let mut w = stdout.lock();
     let mut t = Table::new(&[
@@ -321,7 +357,7 @@ fn sweep_dir(a: &ExploreArgs, g: &Global) -> anyhow::Result<()> {
         "distance",
         "coverage",
     ]);
-    for r in &rows {
+    for r in rows {
         t.row(vec![
             r.environment.clone(),
             r.strategy.clone(),
@@ -360,10 +396,27 @@ fn limits_of(a: &ExploreArgs) -> anyhow::Result<ReferenceLimits> {
     })
 }
 
+/// `--range` is a positive distance, and `range_limited`, named explicitly, needs one (the
+/// paper's algorithm for an unlimited sensor is depth_first).
+fn check_range(strategy: &str, range: Option<f64>) -> anyhow::Result<()> {
+    if let Some(r) = range
+        && !(r.is_finite() && r > 0.0)
+    {
+        bail!("--range must be a positive number of metres, got {}", Num(r));
+    }
+    if strategy == "range_limited" && range.is_none() {
+        bail!(
+            "--strategy range_limited needs --range R (metres); for an unlimited range the paper's algorithm is depth_first"
+        );
+    }
+    Ok(())
+}
+
 pub(crate) fn run(a: &ExploreArgs, g: &Global) -> anyhow::Result<()> {
     if a.env.is_dir() {
         return sweep_dir(a, g);
     }
+    check_range(&a.strategy, a.range)?;
     let env = stopscan::io::read_environment(&a.env)?;
     let start = match &a.start {
         Some(s) => env.frame.to_local(parse_point(s)?),
@@ -391,6 +444,24 @@ pub(crate) fn run(a: &ExploreArgs, g: &Global) -> anyhow::Result<()> {
 
 pub(crate) fn generate(a: &GenerateArgs, g: &Global) -> anyhow::Result<()> {
     let n = a.size;
+    let (max, what) = match a.family {
+        Family::Forest => {
+            (crate::limits::PILLARS, "pillars (a 30 m × 20 m rectangle holds a few hundred)")
+        }
+        Family::Star => {
+            (crate::limits::SPIKES, "the star's checks grow with the square of its spikes")
+        }
+        _ => (crate::limits::SIZE, "the work grows with the size, and with desks quadratically"),
+    };
+    crate::limits::soft(g, n as f64, max, || format!("--size {n}"), what, "")?;
+    crate::limits::soft(
+        g,
+        a.desks as f64,
+        crate::limits::SIZE,
+        || format!("--desks {}", a.desks),
+        "each desk is tested against every other",
+        "",
+    )?;
     let inst: Instance = match a.family {
         Family::Spiral => generate::spiral(n)?,
         Family::Star => generate::star(n)?,

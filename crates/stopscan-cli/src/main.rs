@@ -5,6 +5,7 @@ mod bench;
 mod cli;
 mod corner;
 mod explore;
+mod limits;
 mod output;
 mod roi;
 mod visibility;
@@ -40,18 +41,23 @@ fn main() -> ExitCode {
             }) {
                 return ExitCode::SUCCESS;
             }
-            // Each cause once: library errors often repeat their source in their own message.
-            let mut msg = err.to_string();
-            for cause in err.chain().skip(1) {
-                let c = cause.to_string();
-                if !msg.contains(&c) {
-                    msg = format!("{msg}: {c}");
-                }
-            }
-            let _ = writeln!(std::io::stderr(), "error: {msg}");
+            let _ = writeln!(std::io::stderr(), "error: {}", error_chain(&err));
             ExitCode::from(2)
         }
     }
+}
+
+/// An error and its causes on one line, each cause once: library errors often repeat their
+/// source in their own message.
+pub(crate) fn error_chain(err: &anyhow::Error) -> String {
+    let mut msg = err.to_string();
+    for cause in err.chain().skip(1) {
+        let c = cause.to_string();
+        if !msg.contains(&c) {
+            msg = format!("{msg}: {c}");
+        }
+    }
+    msg
 }
 
 fn run(args: &cli::Cli) -> anyhow::Result<()> {
@@ -59,6 +65,7 @@ fn run(args: &cli::Cli) -> anyhow::Result<()> {
     if g.format == cli::Format::Svg && !matches!(args.command, Some(cli::Command::Visibility(_))) {
         anyhow::bail!("--format svg is only available for `stopscan visibility`");
     }
+    check_targets(args)?;
     match &args.command {
         None => explore::main_job(g),
         Some(cli::Command::Explore(a)) => explore::run(a, g),
@@ -69,5 +76,63 @@ fn run(args: &cli::Cli) -> anyhow::Result<()> {
         Some(cli::Command::Roi(a)) => roi::run(a, g),
         Some(cli::Command::Reproduce(r)) => corner::reproduce(r, g),
         Some(cli::Command::Bench(b)) => bench::run(b, g),
+    }
+}
+
+/// Checks every output before any work (a long sweep must not fail at its end): a file output
+/// needs an existing directory and must not be a directory; a directory output is created
+/// (one level) now. `roi --resume` checks the outputs its state names once it has read it.
+fn check_targets(args: &cli::Cli) -> anyhow::Result<()> {
+    use cli::{Command, CornerCommand};
+    use output::{check_file, ensure_dir};
+    use std::path::{Path, PathBuf};
+    let g = &args.global;
+    let out = g.out.as_deref();
+    let file = |p: Option<&Path>| p.map_or(Ok(()), check_file);
+    let unused = |what: &str| -> anyhow::Result<()> {
+        match out {
+            Some(_) => anyhow::bail!("{what} writes to -o FILE; --out is not used"),
+            None => Ok(()),
+        }
+    };
+    match &args.command {
+        None => ensure_dir(out.unwrap_or(Path::new("stopscan-out"))),
+        Some(Command::Explore(a)) => {
+            if a.env.is_dir() {
+                check_file(out.unwrap_or(Path::new("sweep.csv")))
+            } else {
+                check_file(out.unwrap_or(Path::new("run.json")))?;
+                file(a.svg.as_deref())?;
+                file(a.trace.as_deref())
+            }
+        }
+        Some(Command::Generate(a)) => {
+            unused("generate")?;
+            check_file(&a.output)
+        }
+        Some(Command::Map { command: cli::MapCommand::Import(a) }) => {
+            unused("map import")?;
+            check_file(&a.output)
+        }
+        Some(Command::Corner { command }) => match command {
+            CornerCommand::Demo => ensure_dir(out.unwrap_or(Path::new("stopscan-out"))),
+            CornerCommand::Circle { .. } | CornerCommand::Policy(_) => {
+                out.map_or(Ok(()), ensure_dir)
+            }
+            _ => file(out),
+        },
+        Some(Command::Visibility(_) | Command::Bench(_)) => file(out),
+        Some(Command::Reproduce(_)) => out.map_or(Ok(()), ensure_dir),
+        Some(Command::Roi(a)) => {
+            file(a.trace.as_deref())?;
+            if a.resume.is_some() {
+                file(out)?;
+                return file(a.svg.as_deref());
+            }
+            let o = out.map_or_else(|| PathBuf::from("roi-run.json"), Path::to_path_buf);
+            check_file(&o)?;
+            check_file(&a.svg.clone().unwrap_or_else(|| o.with_extension("svg")))?;
+            file(a.state.as_deref())
+        }
     }
 }

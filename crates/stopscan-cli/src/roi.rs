@@ -1,6 +1,6 @@
 //! `stopscan roi`: a team of robots explores a region of interest (Algorithm 1 of the ROI
 //! paper), optionally with the field pipeline (camera, lawn-mowing search, battery), writing
-//! the mission state after every step so that `--resume` carries on after a crash.
+//! the mission state as it goes so that `--resume` carries on after a crash.
 
 use std::io::Write;
 use std::path::{Path, PathBuf};
@@ -9,15 +9,17 @@ use anyhow::{Context, bail};
 use serde::{Deserialize, Serialize};
 use stopscan::io::grid::GridOptions;
 use stopscan::io::run_record::GridRunRecord;
+use stopscan::kernel::Num;
 use stopscan::protocol::CostModel;
 use stopscan::protocol::grid::Cell;
-use stopscan::sim::grid::{Mission, MissionPlan, Search};
+use stopscan::sim::grid::{MAX_FRAMES, Mission, MissionPlan, Search};
 use stopscan::sim::{Flow, NoObserver, Recording};
 use stopscan::world::grid::camera::CameraModel;
 use stopscan::world::grid::{Drift, GridRoi, GridSensor, GridWorld};
 
 use crate::cli::{Format, Global, RoiArgs};
-use crate::output::{Table, num, write_json_atomic};
+use crate::limits;
+use crate::output::{Table, check_file, num, write_atomic, write_json_atomic};
 
 /// Where the region comes from, so that a resumed mission rebuilds the same world.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
@@ -29,7 +31,8 @@ enum Source {
     File { path: PathBuf, cell_size: f64, cell_px: usize, start: Option<Cell>, invert: bool },
 }
 
-/// Everything a resumed mission needs (`--state`, `--resume`).
+/// Everything a resumed mission needs (`--state`, `--resume`). Paths are absolute, so that a
+/// mission resumes from any directory.
 #[derive(Debug, Clone, Serialize, Deserialize)]
 struct MissionFile {
     format: String,
@@ -39,10 +42,45 @@ struct MissionFile {
     seed: u64,
     out: PathBuf,
     svg: PathBuf,
+    /// The event trace, if the mission writes one.
+    trace: Option<PathBuf>,
+    /// The trace's length in bytes when this state was taken: a resumed mission cuts the
+    /// trace back to it, so that the events after the state are not written twice.
+    trace_len: u64,
     mission: Mission,
 }
 
-const MISSION_FORMAT: &str = "stopscan-mission/1";
+/// `/2`: the trace and its length are recorded; a search's lawn is computed, not listed.
+const MISSION_FORMAT: &str = "stopscan-mission/2";
+
+fn absolute(p: &Path) -> PathBuf {
+    std::path::absolute(p).unwrap_or_else(|_| p.to_path_buf())
+}
+
+/// The soft limits on a mission's size: robots and cells (of a random region, or `bench roi`).
+pub(crate) fn check_size(
+    g: &Global,
+    flag: &str,
+    cells: usize,
+    robots: usize,
+) -> anyhow::Result<()> {
+    limits::soft(
+        g,
+        robots as f64,
+        limits::ROBOTS,
+        || format!("--robots {robots}"),
+        "each robot keeps its own strategy and path, and the team loop scans them all",
+        "",
+    )?;
+    limits::soft(
+        g,
+        cells as f64,
+        limits::CELLS,
+        || format!("{flag} {cells} (cells)"),
+        "about 300 bytes and 2.5 µs per cell",
+        "",
+    )
+}
 
 fn load(source: &Source) -> anyhow::Result<GridRoi> {
     Ok(match source {
@@ -80,26 +118,55 @@ fn parse_cell(s: &str, what: &str) -> anyhow::Result<Cell> {
     }
 }
 
-fn parse_box(s: &str) -> anyhow::Result<(Cell, Cell)> {
+fn parse_box(s: &str, g: &Global) -> anyhow::Result<(Cell, Cell)> {
     let v: Vec<i32> = s
         .split(',')
         .map(|x| x.trim().parse::<i32>())
         .collect::<Result<_, _>>()
-        .with_context(|| format!("--search-box must be ROW0,COL0,ROW1,COL1, got {s:?}"))?;
-    match v.as_slice() {
-        &[r0, c0, r1, c1] if r0 <= r1 && c0 <= c1 => Ok(([r0, c0], [r1, c1])),
-        _ => bail!(
+        .with_context(|| {
+            format!(
+                "--search-box must be ROW0,COL0,ROW1,COL1 (whole numbers within ±2^31), got {s:?}"
+            )
+        })?;
+    let &[r0, c0, r1, c1] = v.as_slice() else {
+        bail!("--search-box must be ROW0,COL0,ROW1,COL1, got {s:?}");
+    };
+    if !(r0 <= r1 && c0 <= c1) {
+        bail!(
             "--search-box must be ROW0,COL0,ROW1,COL1 with ROW0 ≤ ROW1 and COL0 ≤ COL1, got {s:?}"
-        ),
+        );
     }
+    let cells = (f64::from(r1) - f64::from(r0) + 1.0) * (f64::from(c1) - f64::from(c0) + 1.0);
+    limits::soft(
+        g,
+        cells,
+        limits::CELLS,
+        || format!("--search-box {s} covers {} cells", limits::count(cells)),
+        "about 70 bytes and 0.5 µs per cell, more with --camera",
+        "narrow the box",
+    )?;
+    Ok(([r0, c0], [r1, c1]))
 }
 
 /// A fresh mission from the command line.
 fn fresh(a: &RoiArgs, g: &Global) -> anyhow::Result<MissionFile> {
     let start = a.start.as_deref().map(|s| parse_cell(s, "--start")).transpose()?;
+    check_size(g, "--random", a.random.unwrap_or(0), a.robots)?;
+    if a.camera && !(1..=MAX_FRAMES).contains(&a.frames) {
+        bail!(
+            "--frames must be between 1 and {MAX_FRAMES} (the paper votes 3 of 5), got {}",
+            a.frames
+        );
+    }
+    if !(a.state_interval.is_finite() && a.state_interval >= 0.0) {
+        bail!(
+            "--state-interval must be a non-negative number of seconds, got {}",
+            Num(a.state_interval)
+        );
+    }
     let source = match (&a.grid, a.random) {
         (Some(p), None) => Source::File {
-            path: std::path::absolute(p).unwrap_or_else(|_| p.clone()),
+            path: absolute(p),
             cell_size: a.cell_m,
             cell_px: a.cell_px,
             start,
@@ -108,11 +175,14 @@ fn fresh(a: &RoiArgs, g: &Global) -> anyhow::Result<MissionFile> {
         (None, Some(c)) => Source::Random { cells: c, seed: g.seed, cell_size: a.cell_m },
         _ => bail!("give the region with --grid FILE or --random CELLS (or --resume STATE)"),
     };
+    if start.is_some() && a.random.is_some() {
+        bail!("--start applies to --grid files; a random region starts where it was grown");
+    }
     if !(a.roi_speed.is_finite() && a.roi_speed >= 0.0) {
-        bail!("--roi-speed must be a non-negative number of m/s, got {}", a.roi_speed);
+        bail!("--roi-speed must be a non-negative number of m/s, got {}", Num(a.roi_speed));
     }
     if !a.roi_heading_deg.is_finite() {
-        bail!("--roi-heading-deg must be finite, got {}", a.roi_heading_deg);
+        bail!("--roi-heading-deg must be finite, got {}", Num(a.roi_heading_deg));
     }
     let drift = Drift { speed: a.roi_speed, heading_deg: a.roi_heading_deg };
     let sensor = if a.camera {
@@ -122,7 +192,7 @@ fn fresh(a: &RoiArgs, g: &Global) -> anyhow::Result<MissionFile> {
     };
     let search = match (&a.search_box, &a.launch) {
         (Some(b), Some(l)) => {
-            let (min, max) = parse_box(b)?;
+            let (min, max) = parse_box(b, g)?;
             Some(Search { launch: parse_cell(l, "--launch")?, min, max })
         }
         (None, None) => None,
@@ -137,6 +207,31 @@ fn fresh(a: &RoiArgs, g: &Global) -> anyhow::Result<MissionFile> {
         map: a.camera || search.is_some() || matches!(source, Source::File { .. }),
     };
     let roi = load(&source)?;
+    if a.camera {
+        // Every region cell is scanned about once, and a third of the search box's cells.
+        let scans = roi.len() as f64
+            + search.map_or(0.0, |s| {
+                (f64::from(s.max[0]) - f64::from(s.min[0]) + 1.0)
+                    * (f64::from(s.max[1]) - f64::from(s.min[1]) + 1.0)
+                    / 3.0
+            });
+        let frames = scans * a.frames as f64;
+        limits::soft(
+            g,
+            frames,
+            limits::FRAMES,
+            || {
+                format!(
+                    "--camera with {} frames per scan on {} region cells renders about {} frames",
+                    a.frames,
+                    limits::count(roi.len() as f64),
+                    limits::count(frames)
+                )
+            },
+            "about 0.6 ms per frame",
+            "give fewer --frames or a coarser --cell-m",
+        )?;
+    }
     let world = world_of(roi, drift, sensor.clone(), g.seed, search.is_some());
     let recording = if a.no_paths { Recording::NONE } else { Recording::PATHS };
     let mission = Mission::new(&world, plan, recording)?;
@@ -148,8 +243,10 @@ fn fresh(a: &RoiArgs, g: &Global) -> anyhow::Result<MissionFile> {
         drift,
         sensor,
         seed: g.seed,
-        out,
-        svg,
+        out: absolute(&out),
+        svg: absolute(&svg),
+        trace: a.trace.as_deref().map(absolute),
+        trace_len: 0,
         mission,
     })
 }
@@ -166,13 +263,50 @@ fn read_state(path: &Path) -> anyhow::Result<MissionFile> {
     Ok(m)
 }
 
-/// Writes the state atomically: a temporary file beside it, then a rename.
+/// Writes the state atomically (a crash leaves the previous state or this one).
 fn write_state(path: &Path, m: &MissionFile) -> anyhow::Result<()> {
-    let tmp = path.with_extension("tmp");
-    let text = serde_json::to_vec(m)?;
-    std::fs::write(&tmp, text).with_context(|| format!("cannot write {}", tmp.display()))?;
-    std::fs::rename(&tmp, path)
-        .with_context(|| format!("cannot move {} to {}", tmp.display(), path.display()))
+    write_atomic(path, |w| serde_json::to_writer(w, m).map_err(std::io::Error::from))
+}
+
+/// Counts the bytes written through it (the trace's length, for the state file).
+struct Counting<W> {
+    inner: W,
+    bytes: std::rc::Rc<std::cell::Cell<u64>>,
+}
+
+impl<W: Write> Write for Counting<W> {
+    fn write(&mut self, buf: &[u8]) -> std::io::Result<usize> {
+        let n = self.inner.write(buf)?;
+        self.bytes.set(self.bytes.get() + n as u64);
+        Ok(n)
+    }
+    fn flush(&mut self) -> std::io::Result<()> {
+        self.inner.flush()
+    }
+}
+
+/// Opens the trace: a fresh mission (or a new file given on resume) starts it empty; a
+/// resumed one cuts its own trace back to the length recorded with the state and appends.
+fn open_trace(path: &Path, keep: u64) -> anyhow::Result<std::fs::File> {
+    let cannot = || format!("cannot write {}", path.display());
+    let f = std::fs::OpenOptions::new()
+        .create(true)
+        .truncate(false)
+        .read(true)
+        .write(true)
+        .open(path)
+        .with_context(cannot)?;
+    let len = f.metadata().with_context(cannot)?.len();
+    if len < keep {
+        bail!(
+            "{}: the trace has {len} bytes, fewer than the {keep} the mission state recorded; it was changed since (give --trace NEW to start a new one)",
+            path.display()
+        );
+    }
+    f.set_len(keep).with_context(cannot)?;
+    let mut f = f;
+    std::io::Seek::seek(&mut f, std::io::SeekFrom::End(0)).with_context(cannot)?;
+    Ok(f)
 }
 
 pub(crate) fn run(a: &RoiArgs, g: &Global) -> anyhow::Result<()> {
@@ -183,8 +317,20 @@ pub(crate) fn run(a: &RoiArgs, g: &Global) -> anyhow::Result<()> {
         Some(p) => {
             let mut f = read_state(p)?;
             if let Some(o) = &g.out {
-                f.out.clone_from(o);
-                f.svg = a.svg.clone().unwrap_or_else(|| o.with_extension("svg"));
+                f.out = absolute(o);
+                f.svg = absolute(&a.svg.clone().unwrap_or_else(|| o.with_extension("svg")));
+            } else if let Some(s) = &a.svg {
+                f.svg = absolute(s);
+            }
+            check_file(&f.out)?;
+            check_file(&f.svg)?;
+            if let Some(t) = &a.trace {
+                // A trace named now replaces the recorded one and starts empty.
+                let t = absolute(t);
+                if f.trace.as_ref() != Some(&t) {
+                    f.trace = Some(t);
+                    f.trace_len = 0;
+                }
             }
             (f, Some(p.clone()))
         }
@@ -197,22 +343,18 @@ pub(crate) fn run(a: &RoiArgs, g: &Global) -> anyhow::Result<()> {
         world = file.mission.restore(world);
     }
     let bar = crate::output::spinner();
-    let mut trace = match &a.trace {
+    let bytes = std::rc::Rc::new(std::cell::Cell::new(file.trace_len));
+    let mut trace = match &file.trace {
         Some(p) => {
-            // A fresh mission starts the trace; a resumed one carries it on.
-            let resuming = a.resume.is_some();
-            let f = std::fs::OpenOptions::new()
-                .create(true)
-                .write(true)
-                .append(resuming)
-                .truncate(!resuming)
-                .open(p)
-                .with_context(|| format!("cannot write {}", p.display()))?;
-            Some(stopscan::sim::JsonLinesTrace::new(std::io::BufWriter::new(f)))
+            let f = open_trace(p, file.trace_len)?;
+            let out = Counting { inner: std::io::BufWriter::new(f), bytes: bytes.clone() };
+            Some(stopscan::sim::JsonLinesTrace::new(out))
         }
         None => None,
     };
     let limit = file.mission.step_limit(&world);
+    let interval = std::time::Duration::from_secs_f64(a.state_interval.max(0.0));
+    let mut last_write: Option<std::time::Instant> = None;
     loop {
         if file.mission.team.steps >= limit {
             bail!("the mission did not finish within {limit} steps");
@@ -222,12 +364,20 @@ pub(crate) fn run(a: &RoiArgs, g: &Global) -> anyhow::Result<()> {
             None => file.mission.step(&mut world, &mut NoObserver)?,
         };
         if let Some(e) = trace.as_mut().and_then(|t| t.error.take()) {
-            let p = a.trace.as_deref().unwrap_or(Path::new("trace"));
+            let p = file.trace.as_deref().unwrap_or(Path::new("trace"));
             return Err(anyhow::Error::from(e).context(format!("cannot write {}", p.display())));
         }
-        if let Some(p) = &state {
+        // The state, at most once per interval and at the end: each write costs time in
+        // proportion to the mission. Every step's state is consistent, so a resume from any
+        // of them ends with the same record.
+        let done = flow != Flow::Continue;
+        if let Some(p) = &state
+            && (done || last_write.is_none_or(|t| t.elapsed() >= interval))
+        {
             file.mission.snapshot(&world);
+            file.trace_len = bytes.get();
             write_state(p, &file)?;
+            last_write = Some(std::time::Instant::now());
         }
         if file.mission.team.steps % 256 == 0 {
             bar.set_message(format!(
@@ -237,7 +387,7 @@ pub(crate) fn run(a: &RoiArgs, g: &Global) -> anyhow::Result<()> {
             ));
             bar.tick();
         }
-        if flow != Flow::Continue {
+        if done {
             break;
         }
     }
@@ -246,11 +396,7 @@ pub(crate) fn run(a: &RoiArgs, g: &Global) -> anyhow::Result<()> {
     write_json_atomic(&file.out, &record)?;
     let mapped = file.mission.plan.map.then(|| file.mission.marks.positive());
     let svg = stopscan::render::roi_svg(world.roi(), mapped.as_deref(), &record);
-    if let Some(dir) = file.svg.parent().filter(|d| !d.as_os_str().is_empty()) {
-        std::fs::create_dir_all(dir)?;
-    }
-    std::fs::write(&file.svg, svg)
-        .with_context(|| format!("cannot write {}", file.svg.display()))?;
+    write_atomic(&file.svg, |w| w.write_all(svg.as_bytes()))?;
     let stdout = std::io::stdout();
     let mut w = stdout.lock();
     if g.format == Format::Json {
@@ -278,11 +424,11 @@ fn summary(w: &mut dyn Write, r: &GridRunRecord) -> std::io::Result<()> {
         "{}: {} cells of {} m, {} robots at {} m/s; region drifting at {} m/s towards {}°",
         e.name,
         r.cells,
-        e.cell_size,
+        Num(e.cell_size),
         r.robots.len(),
-        r.cost_model.speed,
-        e.drift.speed,
-        e.drift.heading_deg
+        Num(r.cost_model.speed),
+        Num(e.drift.speed),
+        Num(e.drift.heading_deg)
     )?;
     let mut t = Table::new(&["quantity", "value"]);
     let opt = |v: Option<f64>, d: usize| v.map_or_else(|| "-".to_string(), |x| num(Some(x), d));

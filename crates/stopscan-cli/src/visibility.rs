@@ -5,14 +5,15 @@ use std::time::Instant;
 
 use anyhow::{Context, bail};
 use serde_json::json;
+use stopscan::algorithm::visibility::range::MIN_ARC_TOLERANCE;
 use stopscan::algorithm::visibility::range::{RangeRegion, clip};
 use stopscan::algorithm::visibility::{
     BoundaryPiece, Visibility, VisibilityError, VisibilityRegion, expansion,
 };
-use stopscan::kernel::Point;
+use stopscan::kernel::{Num, Point};
 
 use crate::cli::{BenchArgs, Format, Global, ImportArgs, VisibilityArgs};
-use crate::output::{Table, emit, num};
+use crate::output::{Table, emit, num, write_atomic};
 
 pub(crate) fn parse_point(s: &str) -> anyhow::Result<Point> {
     let v: Vec<&str> = s.split(',').map(str::trim).collect();
@@ -39,13 +40,27 @@ fn range_json(r: &RangeRegion, tolerance: f64) -> serde_json::Value {
 }
 
 fn check_range(range: Option<f64>, tol: Option<f64>) -> anyhow::Result<Option<(f64, f64)>> {
-    let Some(r) = range else { return Ok(None) };
+    let Some(r) = range else {
+        if tol.is_some() {
+            bail!("--arc-tolerance applies to range-limited regions: give --range R too");
+        }
+        return Ok(None);
+    };
     if !(r.is_finite() && r > 0.0) {
-        bail!("--range must be a finite positive distance, got {r}");
+        bail!("--range must be a finite positive distance, got {}", Num(r));
     }
     let t = tol.unwrap_or(r * 1e-4);
     if !(t.is_finite() && t > 0.0) {
-        bail!("--arc-tolerance must be a finite positive distance, got {t}");
+        bail!("--arc-tolerance must be a finite positive distance, got {}", Num(t));
+    }
+    let min = r * MIN_ARC_TOLERANCE;
+    if t < min {
+        bail!(
+            "--arc-tolerance {} is below R·1e-9 = {}: a full circle would need more than 70,000 vertices; give at least {} (the exact arcs are in \"boundary\" whatever the tolerance)",
+            Num(t),
+            Num(min),
+            Num(min)
+        );
     }
     Ok(Some((r, t)))
 }
@@ -68,13 +83,16 @@ pub(crate) fn run(a: &VisibilityArgs, g: &Global) -> anyhow::Result<()> {
     let vis = Visibility::new(env.domain)?;
     if let Some(file) = &a.queries {
         let points = stopscan::io::read_points(file)?;
+        if points.is_empty() {
+            bail!("{}: no query points (one \"x y\" per line)", file.display());
+        }
         let stdout = std::io::stdout();
         let mut w = stdout.lock();
         let mut scratch = expansion::Scratch::default();
         let mut region = VisibilityRegion::default();
         for (i, &q) in points.iter().enumerate() {
             vis.query_into(frame.to_local(q), &mut scratch, &mut region).with_context(|| {
-                format!("{}:{}: query ({}, {})", file.display(), i + 1, q[0], q[1])
+                format!("{}:{}: query ({}, {})", file.display(), i + 1, Num(q[0]), Num(q[1]))
             })?;
             let v = match range {
                 Some((r, t)) => range_json(&clip(&region, r).mapped(input), t),
@@ -107,10 +125,11 @@ pub(crate) fn run(a: &VisibilityArgs, g: &Global) -> anyhow::Result<()> {
         return emit(g, &value, true, |w| {
             writeln!(
                 w,
-                "viewpoint ({}, {}) within {radius}: area {:.6} (exact), {} pieces, {} arcs",
-                q[0],
-                q[1],
-                rr.area(),
+                "viewpoint ({}, {}) within {}: area {} (exact), {} pieces, {} arcs",
+                Num(q[0]),
+                Num(q[1]),
+                Num(radius),
+                num(Some(rr.area()), 6),
                 rr.boundary.len(),
                 rr.arcs().count()
             )
@@ -124,10 +143,10 @@ pub(crate) fn run(a: &VisibilityArgs, g: &Global) -> anyhow::Result<()> {
     emit(g, &value, true, |w| {
         writeln!(
             w,
-            "viewpoint ({}, {}): area {:.6}, {} vertices, {} windows",
-            q[0],
-            q[1],
-            r.area(),
+            "viewpoint ({}, {}): area {}, {} vertices, {} windows",
+            Num(q[0]),
+            Num(q[1]),
+            num(Some(r.area()), 6),
             r.polygon.len(),
             r.windows().count()
         )?;
@@ -157,9 +176,7 @@ pub(crate) fn run(a: &VisibilityArgs, g: &Global) -> anyhow::Result<()> {
 fn write_svg(g: &Global, vis: &Visibility, region: &VisibilityRegion) -> anyhow::Result<()> {
     let svg = stopscan::render::scene_svg(vis.domain(), std::slice::from_ref(region));
     match &g.out {
-        Some(path) => {
-            std::fs::write(path, svg).with_context(|| format!("cannot write {}", path.display()))
-        }
+        Some(path) => write_atomic(path, |w| w.write_all(svg.as_bytes())),
         None => Ok(std::io::stdout().lock().write_all(svg.as_bytes())?),
     }
 }
@@ -169,7 +186,11 @@ pub(crate) fn bench(a: &BenchArgs, g: &Global) -> anyhow::Result<()> {
     let env = stopscan::io::read_environment(path)?;
     let queries = match &a.queries {
         Some(f) => {
-            stopscan::io::read_points(f)?.into_iter().map(|q| env.frame.to_local(q)).collect()
+            let q = stopscan::io::read_points(f)?;
+            if q.is_empty() {
+                bail!("{}: no query points (one \"x y\" per line)", f.display());
+            }
+            q.into_iter().map(|q| env.frame.to_local(q)).collect()
         }
         None => env.queries.clone(),
     };
@@ -251,13 +272,13 @@ pub(crate) fn import(a: &ImportArgs, g: &Global) -> anyhow::Result<()> {
     emit(g, &value, false, |w| {
         writeln!(
             w,
-            "{} -> {}: {} vertices, {} holes, {} reflex, free area {:.3}",
+            "{} -> {}: {} vertices, {} holes, {} reflex, free area {}",
             a.file.display(),
             a.output.display(),
             d.vertex_count(),
             d.holes().len(),
             d.reflex_vertices().len(),
-            d.area()
+            num(Some(d.area()), 3)
         )
     })
 }

@@ -226,11 +226,12 @@ fn corner_demo_writes_its_outputs() {
     for s in ["Circle strategy", "UNIREC", "EXPREC", "POLICY1", "POLICY2", "1.839287"] {
         assert!(text.contains(s), "missing {s} in\n{text}");
     }
-    for f in ["run.json", "circle-ratio.svg", "circle-ratio.png"] {
+    for f in ["corner-demo.json", "circle-ratio.svg", "circle-ratio.png"] {
         assert!(dir.join(f).metadata().unwrap().len() > 100, "{f}");
     }
     let run: Value =
-        serde_json::from_str(&std::fs::read_to_string(dir.join("run.json")).unwrap()).unwrap();
+        serde_json::from_str(&std::fs::read_to_string(dir.join("corner-demo.json")).unwrap())
+            .unwrap();
     assert_eq!(run["corner"]["strategies"].as_array().unwrap().len(), 4);
 }
 
@@ -399,6 +400,11 @@ fn reproduce_every_id() {
     assert!(String::from_utf8_lossy(&out.stderr).contains("views-benchmarks skipped"));
     let out = stopscan(&["reproduce", "views-benchmarks", "--data", missing.to_str().unwrap()]);
     assert_eq!(out.status.code(), Some(2));
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert!(err.contains(missing.to_str().unwrap()) && err.contains("no such directory"), "{err}");
+    let empty = temp("empty-data");
+    std::fs::create_dir_all(&empty).unwrap();
+    let out = stopscan(&["reproduce", "views-benchmarks", "--data", empty.to_str().unwrap()]);
     assert!(String::from_utf8_lossy(&out.stderr).contains("no benchmark environments"));
     let t1 = json(&["reproduce", "circle-table-1"]);
     for r in t1["rows"].as_array().unwrap() {
@@ -440,6 +446,7 @@ fn table_output_is_stable() {
 #[test]
 fn out_file_gets_the_json() {
     let dir = temp("outfile");
+    std::fs::create_dir_all(&dir).unwrap();
     let path = dir.join("t.json");
     let out = stopscan(&["corner", "thresholds", "--count", "2", "--out", path.to_str().unwrap()]);
     assert!(out.status.success());
@@ -469,7 +476,7 @@ fn bad_input_is_a_clear_error() {
                 "--stops-deg",
                 "60,30",
             ],
-            "not finite, positive and above",
+            "stop 2 (30°) is not above stop 1 (60°)",
         ),
         (vec!["corner", "policy", "--belief", "normal:60"], "normal:60"),
         (vec!["corner", "policy", "--belief", "beta:1,2"], "unknown kind"),
@@ -674,7 +681,7 @@ fn roi_reports_bad_input_clearly() {
     let o = stopscan(&["roi", "--random", "20", "--robot-speed", "1", "--roi-speed", "1"]);
     assert!(String::from_utf8_lossy(&o.stderr).contains("must exceed the region's speed"));
     let o = stopscan(&["roi", "--random", "20", "--robots", "0"]);
-    assert!(String::from_utf8_lossy(&o.stderr).contains("at least one robot"));
+    assert!(String::from_utf8_lossy(&o.stderr).contains("expected a whole number of at least 1"));
     let o = stopscan(&["roi"]);
     assert!(String::from_utf8_lossy(&o.stderr).contains("--grid FILE or --random CELLS"));
     let o = stopscan(&["roi", "--resume", "m.json", "--robots", "3"]);
@@ -744,13 +751,20 @@ fn roi_mission_survives_kill_and_resume() {
     let state = dir.join("mission.json");
     let whole = dir.join("whole.json");
     let resumed = dir.join("resumed.json");
+    let (whole_trace, trace) = (dir.join("whole.jsonl"), dir.join("resumed.jsonl"));
     let args =
         ["roi", "--random", "400", "--robots", "3", "--roi-speed", "0.2", "--battery-s", "150"];
-    let o = stopscan(&[&args[..], &["--out", whole.to_str().unwrap()]].concat());
+    let o = stopscan(
+        &[&args[..], &["--out", whole.to_str().unwrap(), "--trace", whole_trace.to_str().unwrap()]]
+            .concat(),
+    );
     assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    // The state after every step, so that the kill lands mid-mission; the trace goes on past
+    // the last state written.
     let mut child = Command::new(env!("CARGO_BIN_EXE_stopscan"))
         .args(args)
         .args(["--state", state.to_str().unwrap(), "--out", resumed.to_str().unwrap()])
+        .args(["--state-interval", "0", "--trace", trace.to_str().unwrap()])
         .stdout(std::process::Stdio::null())
         .spawn()
         .unwrap();
@@ -778,14 +792,51 @@ fn roi_mission_survives_kill_and_resume() {
         "killed after the mission ended ({at_kill} steps); the test needs a longer mission"
     );
     assert!(!resumed.exists(), "no run record before the end");
-    let o = stopscan(&["roi", "--resume", state.to_str().unwrap()]);
+    // From another directory and without --trace: the state remembers both.
+    let o = Command::new(env!("CARGO_BIN_EXE_stopscan"))
+        .args(["roi", "--resume", state.to_str().unwrap()])
+        .current_dir(std::env::temp_dir())
+        .output()
+        .unwrap();
     assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
     assert_eq!(
         std::fs::read(&whole).unwrap(),
         std::fs::read(&resumed).unwrap(),
         "the resumed mission differs from the uninterrupted one (killed at step {at_kill})"
     );
+    assert_eq!(
+        std::fs::read_to_string(&whole_trace).unwrap(),
+        std::fs::read_to_string(&trace).unwrap(),
+        "the resumed trace differs from the uninterrupted one: events lost or repeated"
+    );
     assert!(steps(&state) > at_kill);
+    let leftovers: Vec<_> = std::fs::read_dir(&dir)
+        .unwrap()
+        .flatten()
+        .filter(|e| e.file_name().to_string_lossy().ends_with(".tmp"))
+        .collect();
+    assert!(leftovers.is_empty(), "temporary files left: {leftovers:?}");
+}
+
+/// With the default interval the state is written at most once a second and at the end; a
+/// mission resumed from its final state ends with the same record.
+#[test]
+fn roi_state_is_written_sparingly_and_at_the_end() {
+    let dir = temp("roi-interval");
+    std::fs::create_dir_all(&dir).unwrap();
+    let (state, a, b) = (dir.join("s.json"), dir.join("a.json"), dir.join("b.json"));
+    let args = ["roi", "--random", "3000", "--robots", "4"];
+    let o = stopscan(
+        &[&args[..], &["--state", state.to_str().unwrap(), "--out", a.to_str().unwrap()]].concat(),
+    );
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    let saved: Value = serde_json::from_str(&std::fs::read_to_string(&state).unwrap()).unwrap();
+    assert!(
+        saved["mission"]["team"]["robots"].as_array().unwrap().iter().all(|r| r["done"] == true)
+    );
+    let o = stopscan(&["roi", "--resume", state.to_str().unwrap(), "--out", b.to_str().unwrap()]);
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    assert_eq!(std::fs::read(&a).unwrap(), std::fs::read(&b).unwrap());
 }
 
 #[test]
@@ -801,4 +852,400 @@ fn reproduce_roi_fig_7_writes_charts_and_csv() {
     let csv = std::fs::read_to_string(dir.join("roi-fig-7.csv")).unwrap();
     assert_eq!(csv.lines().count(), 31, "a header and 30 points");
     assert!(r["notes"][0].as_str().unwrap().starts_with("120 of 120 trials are within"));
+}
+
+/// A failed command: exit status 2, the needles in standard error, no panic.
+fn fails(args: &[&str], needles: &[&str]) -> String {
+    let out = stopscan(args);
+    let err = String::from_utf8_lossy(&out.stderr).into_owned();
+    assert_eq!(out.status.code(), Some(2), "{args:?} should fail: {err}");
+    for n in needles {
+        assert!(err.contains(n), "{args:?}: {err:?} should mention {n:?}");
+    }
+    assert!(!err.contains("panicked"), "{args:?} panicked: {err}");
+    err
+}
+
+fn fixture(path: &str) -> String {
+    PathBuf::from(env!("CARGO_MANIFEST_DIR"))
+        .join("../../fixtures")
+        .join(path)
+        .to_str()
+        .unwrap()
+        .to_string()
+}
+
+/// Work above a limit is refused at once, before anything is allocated, with the limit and
+/// the way around it.
+#[test]
+fn size_limits_are_checked_before_any_work() {
+    let dir = temp("limits");
+    std::fs::create_dir_all(&dir).unwrap();
+    let obs = dir.join("obs.txt");
+    std::fs::write(&obs, "30\n60\n").unwrap();
+    let sq = dir.join("sq.wkt");
+    std::fs::write(&sq, "POLYGON ((0 0, 10 0, 10 10, 0 10, 0 0))\n").unwrap();
+    let (obs, sq, lake) = (obs.to_str().unwrap(), sq.to_str().unwrap(), fixture("roi/lake.txt"));
+    let observed = format!("observed:{obs},1e-9");
+    let out = dir.join("x.geojson");
+    let cases: Vec<(Vec<&str>, Vec<&str>)> = vec![
+        (vec!["corner", "policy", "--belief", &observed], vec!["at least 0.01°", "18000"]),
+        (
+            vec!["corner", "ratio", "--strategy", "unirec", "--delta", "1e-9"],
+            vec!["1,570,796,327 UNIREC stops", "10,000,000", "--allow-large"],
+        ),
+        (
+            vec![
+                "visibility",
+                "--env",
+                sq,
+                "--at",
+                "5,5",
+                "--range",
+                "1",
+                "--arc-tolerance",
+                "1e-15",
+            ],
+            vec!["--arc-tolerance 1e-15 is below R·1e-9"],
+        ),
+        (
+            vec![
+                "visibility",
+                "--env",
+                sq,
+                "--at",
+                "5,5",
+                "--range",
+                "1",
+                "--arc-tolerance",
+                "1e-300",
+            ],
+            vec!["--arc-tolerance 1e-300 is below R·1e-9"],
+        ),
+        (
+            vec!["corner", "simulate", "--strategy", "unirec", "--samples", "100000000000"],
+            vec!["--samples 100000000000", "10,000,000", "--allow-large"],
+        ),
+        (
+            vec!["corner", "simulate", "--strategy", "unirec", "--distance", "1e9"],
+            vec!["UNIREC stops", "--allow-large"],
+        ),
+        (
+            vec![
+                "corner",
+                "policy",
+                "--belief",
+                "uniform:0,180",
+                "--memory",
+                "none",
+                "--step-deg",
+                "1e-9",
+            ],
+            vec!["MDP1 handles at most 1000000"],
+        ),
+        (vec!["roi", "--grid", &lake, "--camera", "--frames", "100000"], vec!["between 1 and 99"]),
+        (
+            vec![
+                "roi",
+                "--grid",
+                &lake,
+                "--search-box=-1000000,-1000000,1000000,1000000",
+                "--launch",
+                "0,0",
+            ],
+            vec!["4,000,004,000,001 cells", "the limit is 4,000,000", "--allow-large"],
+        ),
+        (vec!["roi", "--random", "50", "--robots", "100000000000"], vec!["the limit is 10,000"]),
+        (vec!["roi", "--random", "1000000000"], vec!["the limit is 4,000,000"]),
+        (vec!["bench", "circle", "--n", "10000000000"], vec!["the limit is 1,000,000"]),
+        (vec!["bench", "ratio", "--n", "1000000000"], vec!["the limit is 10,000,000"]),
+        (vec!["bench", "explore", "--n", "1000000"], vec!["the limit is 10,000"]),
+        (vec!["bench", "roi", "--n", "1e9"], vec!["the limit is 4,000,000"]),
+        (
+            vec!["generate", "spiral", "--size", "100000000", "-o", out.to_str().unwrap()],
+            vec!["--size 100000000", "the limit is 10,000"],
+        ),
+        (
+            vec!["generate", "office", "--size", "100000", "-o", out.to_str().unwrap()],
+            vec!["the limit is 10,000"],
+        ),
+    ];
+    for (args, needles) in cases {
+        let t = std::time::Instant::now();
+        fails(&args, &needles);
+        assert!(t.elapsed().as_secs() < 20, "{args:?} took {:?}", t.elapsed());
+    }
+}
+
+/// `--allow-large` lifts a soft limit.
+#[test]
+fn allow_large_lifts_a_soft_limit() {
+    let dir = temp("allow-large");
+    std::fs::create_dir_all(&dir).unwrap();
+    let out = dir.join("office.geojson");
+    let args =
+        ["generate", "office", "--size", "1", "--desks", "10001", "-o", out.to_str().unwrap()];
+    fails(&args, &["--desks 10001", "the limit is 10,000"]);
+    // One room holds a few desks: the others are skipped, quickly.
+    let o = stopscan(&[&args[..], &["--allow-large"]].concat());
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+}
+
+/// Monte Carlo runs in fixed chunks merged in order: the estimate depends on the seed only,
+/// not on the number of threads.
+#[test]
+fn monte_carlo_does_not_depend_on_the_thread_count() {
+    let args =
+        ["corner", "simulate", "--strategy", "unirec", "--samples", "70000", "--format", "json"];
+    let run = |threads: &str| {
+        let o = Command::new(env!("CARGO_BIN_EXE_stopscan"))
+            .args(args)
+            .env("RAYON_NUM_THREADS", threads)
+            .output()
+            .unwrap();
+        assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+        o.stdout
+    };
+    assert_eq!(run("1"), run("3"));
+}
+
+/// Inputs that used to be accepted or ignored without a word.
+#[test]
+fn malformed_or_ignored_inputs_are_errors() {
+    let dir = temp("ignored");
+    std::fs::create_dir_all(&dir).unwrap();
+    let o = dir.join("o.geojson");
+    let o = o.to_str().unwrap();
+    for start in [r#""here""#, "[1]", "null", r#"["1","2"]"#, "[1,2,3]"] {
+        let f = dir.join("start.geojson");
+        std::fs::write(
+            &f,
+            format!(
+                r#"{{"type":"Feature","properties":{{"start":{start}}},"geometry":{{"type":"Polygon","coordinates":[[[0,0],[10,0],[10,10],[0,10]]]}}}}"#
+            ),
+        )
+        .unwrap();
+        fails(
+            &["map", "import", f.to_str().unwrap(), "-o", o],
+            &["start.geojson: properties.start must be [x, y]", start],
+        );
+    }
+    let wkt = |name: &str, text: &str| {
+        let p = dir.join(name);
+        std::fs::write(&p, text).unwrap();
+        p.to_str().unwrap().to_string()
+    };
+    let two =
+        wkt("two.wkt", "POLYGON ((0 0, 10 0, 10 10, 0 0))\nPOLYGON ((20 0, 30 0, 30 10, 20 0))\n");
+    fails(&["map", "import", &two, "-o", o], &["two.wkt:2: unexpected text after the POLYGON"]);
+    let tail = wkt("tail.wkt", "POLYGON ((0 0, 10 0, 10 10, 0 0)) garbage\n");
+    fails(&["map", "import", &tail, "-o", o], &["tail.wkt:1: unexpected text", "garbage"]);
+    // ROS maps: occupied_thresh is read and checked.
+    let yaml = std::fs::read_to_string(fixture("ros-maps/turtlebot3_world.yaml")).unwrap();
+    std::fs::copy(fixture("ros-maps/turtlebot3_world.pgm"), dir.join("turtlebot3_world.pgm"))
+        .unwrap();
+    for (name, value, needle) in [
+        ("nan.yaml", ".nan", "occupied_thresh: expected a number"),
+        ("low.yaml", "0.1", "occupied_thresh 0.1 is not above free_thresh 0.196"),
+    ] {
+        let edited: String = yaml
+            .lines()
+            .map(|l| {
+                if l.starts_with("occupied_thresh") {
+                    format!("occupied_thresh: {value}\n")
+                } else {
+                    format!("{l}\n")
+                }
+            })
+            .collect();
+        let p = dir.join(name);
+        std::fs::write(&p, edited).unwrap();
+        fails(&["map", "import", p.to_str().unwrap(), "-o", o], &[name, needle]);
+    }
+    // --start and the grid's S; --start with a polygon or a random region.
+    let g = wkt("g.txt", "S##\n###\n");
+    fails(&["roi", "--grid", &g, "--start", "1,2"], &["g.txt:1:", "disagree"]);
+    let sq = wkt("sq.wkt", "POLYGON ((0 0, 10 0, 10 10, 0 10, 0 0))\n");
+    fails(&["roi", "--grid", &sq, "--start", "1,2"], &["applies to masks and text grids"]);
+    fails(&["roi", "--random", "30", "--start", "1,2"], &["--start applies to --grid"]);
+    // range_limited needs a range; the camera needs frames; --frames needs the camera.
+    fails(&["explore", "--env", &sq, "--strategy", "range_limited"], &["needs --range"]);
+    let lake = fixture("roi/lake.txt");
+    fails(&["roi", "--grid", &lake, "--camera", "--frames", "0"], &["'--frames <FRAMES>'"]);
+    fails(&["roi", "--grid", &lake, "--frames", "7"], &["--camera"]);
+    fails(&["visibility", "--env", &sq, "--at", "5,5", "--arc-tolerance", "0.1"], &["--range"]);
+}
+
+/// Every output is written atomically, checked before any work, and named in errors; file
+/// outputs need their directory, directory outputs are created one level deep.
+#[test]
+fn outputs_are_checked_first_and_written_atomically() {
+    let dir = temp("outputs");
+    std::fs::create_dir_all(dir.join("envs")).unwrap();
+    std::fs::write(dir.join("envs/a.wkt"), "POLYGON ((0 0, 10 0, 10 10, 0 10, 0 0))\n").unwrap();
+    let d = dir.join("taken");
+    std::fs::create_dir_all(&d).unwrap();
+    let ds = d.to_str().unwrap();
+    let envs = dir.join("envs");
+    for args in [
+        vec!["corner", "thresholds", "--out", ds],
+        vec!["roi", "--random", "30", "--state", ds],
+        vec!["explore", "--env", envs.to_str().unwrap(), "--out", ds],
+    ] {
+        fails(&args, &[&format!("cannot write {ds}: it is a directory")]);
+    }
+    fails(
+        &["corner", "optimal", "--distance", "3", "--scans", "1", "--out", "/nonexistent/d/x.json"],
+        &["cannot write /nonexistent/d/x.json: directory /nonexistent/d does not exist"],
+    );
+    fails(&["roi", "--random", "30", "--state", "/nonexistent/s.json"], &["does not exist"]);
+    let nested = dir.join("a/b");
+    fails(
+        &["corner", "circle", "--distance", "3", "--out", nested.to_str().unwrap()],
+        &["cannot create output directory", "does not exist"],
+    );
+    let new = dir.join("new");
+    let o = stopscan(&["corner", "circle", "--distance", "3", "--out", new.to_str().unwrap()]);
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    assert!(new.join("circle.svg").exists() && new.join("circle.json").exists());
+    // The user's extension is kept whole.
+    let ab = dir.join("a.b");
+    assert!(stopscan(&["corner", "thresholds", "--out", ab.to_str().unwrap()]).status.success());
+    assert!(ab.exists());
+    fails(&["map", "import", "x.wkt", "-o", "y.geojson", "--out", "z"], &["--out is not used"]);
+    let leftovers: Vec<_> = std::fs::read_dir(&dir)
+        .unwrap()
+        .flatten()
+        .map(|e| e.file_name().to_string_lossy().into_owned())
+        .filter(|n| n.contains(".tmp"))
+        .collect();
+    assert!(leftovers.is_empty(), "temporary files left: {leftovers:?}");
+}
+
+/// `corner demo` writes corner-demo.json beside the main job's run.json, not over it.
+#[test]
+fn corner_demo_keeps_the_main_jobs_run_record() {
+    let dir = temp("demo-cwd");
+    std::fs::create_dir_all(&dir).unwrap();
+    for args in [&[][..], &["corner", "demo"][..]] {
+        let o = Command::new(env!("CARGO_BIN_EXE_stopscan"))
+            .args(args)
+            .current_dir(&dir)
+            .output()
+            .unwrap();
+        assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    }
+    let run: Value =
+        serde_json::from_str(&std::fs::read_to_string(dir.join("stopscan-out/run.json")).unwrap())
+            .unwrap();
+    assert_eq!(run["format"], "stopscan-run/1");
+    assert!(dir.join("stopscan-out/corner-demo.json").exists());
+}
+
+/// A file of a sweep that does not load is a row with its error and a warning; the sweep
+/// goes on.
+#[test]
+fn a_bad_file_does_not_end_a_sweep() {
+    let dir = temp("sweep-bad");
+    std::fs::create_dir_all(dir.join("envs")).unwrap();
+    std::fs::write(dir.join("envs/a.wkt"), "POLYGON ((0 0, 10 0, 10 10, 0 10, 0 0))\n").unwrap();
+    std::fs::write(dir.join("envs/c.wkt"), "POLYGON ((0 0, 10 0, 0 0))\n").unwrap();
+    let csv_path = dir.join("sweep.csv");
+    let o = stopscan(&[
+        "explore",
+        "--env",
+        dir.join("envs").to_str().unwrap(),
+        "--out",
+        csv_path.to_str().unwrap(),
+    ]);
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    assert!(String::from_utf8_lossy(&o.stderr).contains("warning: c.wkt"));
+    let text = std::fs::read_to_string(&csv_path).unwrap();
+    let mut rows = csv::Reader::from_reader(text.as_bytes());
+    let header = rows.headers().unwrap().clone();
+    let err = header.iter().position(|h| h == "error").unwrap();
+    let rows: Vec<csv::StringRecord> = rows.records().map(Result::unwrap).collect();
+    assert_eq!(rows.len(), 2);
+    assert!(rows[0][0].starts_with("a.wkt") && rows[0][err].is_empty(), "{text}");
+    assert!(rows[1][0].starts_with("c.wkt") && rows[1][err].contains("ring 0"), "{text}");
+    fails(
+        &["explore", "--env", dir.join("envs").to_str().unwrap(), "--strategy", "range_limited"],
+        &["needs --range"],
+    );
+}
+
+/// Messages echo numbers compactly, name the line, one cause at a time, in the user's units.
+#[test]
+fn messages_are_compact_and_precise() {
+    let dir = temp("messages");
+    std::fs::create_dir_all(&dir).unwrap();
+    let sq = dir.join("sq.wkt");
+    std::fs::write(&sq, "POLYGON ((0 0, 10 0, 10 10, 0 10, 0 0))\n").unwrap();
+    let sq = sq.to_str().unwrap();
+    let err = fails(&["visibility", "--env", sq, "--at", "1e300,5"], &["(1e300, 5)"]);
+    assert!(err.len() < 200, "{err}");
+    fails(&["corner", "circle", "--distance=-1e300"], &["got -1e300"]);
+    fails(
+        &["roi", "--random", "50", "--robots", "-1"],
+        &["'--robots <ROBOTS>'", "expected a whole number of at least 1"],
+    );
+    fails(&["corner", "simulate", "--samples", "-5"], &["at least 1"]);
+    let hist = |name: &str, text: &str| {
+        let p = dir.join(name);
+        std::fs::write(&p, text).unwrap();
+        format!("histogram:{}", p.display())
+    };
+    let e = fails(
+        &["corner", "policy", "--belief", &hist("h1.txt", "0 90 1\n80 180 1\n")],
+        &["h1.txt:2: bucket [80, 180] overlaps [0, 90] of line 1"],
+    );
+    assert!(!e.contains(":0:"), "{e}");
+    fails(
+        &["corner", "policy", "--belief", &hist("h2.txt", "0 90 -1\n90 180 1\n")],
+        &["h2.txt:1: bucket [0, 90]: weight -1 is negative"],
+    );
+    let e = fails(
+        &["corner", "policy", "--belief", &hist("h4.txt", "0 90 0\n")],
+        &["h4.txt: the weights sum to 0"],
+    );
+    assert!(!e.contains(":0:"), "{e}");
+    let e = fails(
+        &["corner", "policy", "--belief", &hist("h5.txt", "# nothing\n")],
+        &["h5.txt: the histogram has no buckets"],
+    );
+    assert!(!e.contains(":0:"), "{e}");
+    for (stops, needle) in [
+        ("30,20", "--stops-deg: stop 2 (20°) is not above stop 1 (30°)"),
+        ("-5", "--stops-deg: stop 1 is -5°"),
+        ("30,95,120", "stop 3 (120°) follows stop 2 (95°), which already reaches the corner"),
+    ] {
+        fails(
+            &["corner", "ratio", "--strategy", "stops", "--delta", "0.1", "--stops-deg", stops],
+            &[needle],
+        );
+    }
+    let png = dir.join("bad.png");
+    std::fs::write(&png, b"\x89QNG\r\n\x1a\nnot an image").unwrap();
+    let e = fails(&["roi", "--grid", png.to_str().unwrap()], &["not a PGM (P5/P2) or PNG"]);
+    assert!(!e.contains("UTF-8"), "{e}");
+    let empty = dir.join("empty.txt");
+    std::fs::write(&empty, "").unwrap();
+    for cmd in ["bench", "visibility"] {
+        let mut args =
+            if cmd == "bench" { vec!["bench", "visibility"] } else { vec!["visibility"] };
+        args.extend(["--env", sq, "--queries", empty.to_str().unwrap()]);
+        fails(&args, &["empty.txt: no query points"]);
+    }
+}
+
+/// `--data` as given, or found from the checkout, whatever the current directory.
+#[test]
+fn reproduce_data_does_not_depend_on_the_current_directory() {
+    let o = Command::new(env!("CARGO_BIN_EXE_stopscan"))
+        .args(["reproduce", "views-benchmarks", "--data", "/nonexistent"])
+        .current_dir(std::env::temp_dir())
+        .output()
+        .unwrap();
+    assert_eq!(o.status.code(), Some(2));
+    assert!(String::from_utf8_lossy(&o.stderr).contains("--data /nonexistent: no such directory"));
 }

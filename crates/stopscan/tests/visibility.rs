@@ -120,19 +120,21 @@ proptest! {
     }
 }
 
-fn shared(name: &str) -> Option<PathBuf> {
+/// A file of the shared visibility benchmark beside the checkout; panics when it is absent
+/// (the tests that need it are ignored by default, and must fail, not pass, without it).
+fn shared(name: &str) -> PathBuf {
     let p = PathBuf::from(env!("CARGO_MANIFEST_DIR"))
         .join("../../../shared/bench/visibility")
         .join(name);
-    p.exists().then_some(p)
+    assert!(p.exists(), "{} is absent: run beside ../shared, or without --ignored", p.display());
+    p
 }
 
+// env_100.txt states no licence, so it is not copied into fixtures/.
 #[test]
+#[ignore = "needs ../shared/bench/visibility/env_100.txt (no stated licence, not vendored)"]
 fn shared_benchmark_agrees_with_the_sweep() {
-    let Some(path) = shared("env_100.txt") else {
-        eprintln!("skipped: ../shared is absent");
-        return;
-    };
+    let path = shared("env_100.txt");
     let env = stopscan::io::bench_format::read(&path).unwrap();
     let v = Visibility::new(env.domain.clone()).unwrap();
     for &q in &env.queries {

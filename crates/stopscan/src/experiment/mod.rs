@@ -9,19 +9,23 @@ pub fn ids() -> Vec<&'static str> {
     corner::IDS.iter().chain(polygon::IDS).chain(grid::IDS).copied().collect()
 }
 
-/// Runs any reproduction by identifier.
+/// Runs any reproduction by identifier; `views-benchmarks` reads [`SHARED_DATA`].
 ///
 /// # Errors
 /// [`ExperimentError::UnknownId`] for an unknown identifier; model errors otherwise.
 pub fn reproduce(id: &str, samples: usize, seed: u64) -> Result<Reproduction, ExperimentError> {
-    reproduce_with_data(id, samples, seed, std::path::Path::new(DEFAULT_DATA))
+    reproduce_with_data(id, samples, seed, std::path::Path::new(SHARED_DATA))
 }
+
+/// The shared benchmark data beside the checkout this crate was built from (fixed at compile
+/// time, so it does not depend on the current directory).
+pub const SHARED_DATA: &str = concat!(env!("CARGO_MANIFEST_DIR"), "/../../../shared/data");
 
 /// Trials per point of `roi-fig-7` (the paper's 100); `--samples` lowers it.
 pub const ROI_TRIALS: usize = 100;
 
-/// Where `views-benchmarks` looks for its inputs unless told otherwise: the shared benchmark
-/// data beside a clone.
+/// The shared benchmark data beside a clone, relative to the current directory (the CLI's last
+/// guess when `--data` is not given).
 pub const DEFAULT_DATA: &str = "../shared/data";
 
 /// [`reproduce`], with the folder of benchmark environments for `views-benchmarks`.

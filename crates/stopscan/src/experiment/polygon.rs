@@ -314,6 +314,36 @@ pub struct SweepRow {
     pub error: String,
 }
 
+impl SweepRow {
+    /// The row of a run that could not start (an environment file that does not load, say):
+    /// zeros, and the reason in `error`.
+    pub fn failed(environment: &str, strategy: &str, error: impl Into<String>) -> Self {
+        Self {
+            environment: environment.into(),
+            strategy: strategy.into(),
+            vertices: 0,
+            holes: 0,
+            reflex_vertices: 0,
+            free_area: 0.0,
+            scans: 0,
+            moves: 0,
+            distance: 0.0,
+            time: 0.0,
+            scan_time_total: 0.0,
+            move_time_total: 0.0,
+            travel_time_total: 0.0,
+            coverage: 0.0,
+            open_windows: 0,
+            scans_upper: 0,
+            within_bound: false,
+            scans_lower: 0,
+            time_lower: 0.0,
+            certified_ratio: None,
+            error: error.into(),
+        }
+    }
+}
+
 /// An environment to sweep: name, domain and start.
 pub type SweepInput = (String, crate::geometry::Domain, crate::kernel::Point);
 
@@ -363,27 +393,12 @@ fn sweep_one(
     let r = domain.reflex_vertices().len();
     let (upper, _) = crate::offline::polygon::upper_bound(domain, range);
     let mut row = SweepRow {
-        environment: name.into(),
-        strategy: strategy.into(),
         vertices: domain.vertex_count(),
         holes: domain.holes().len(),
         reflex_vertices: r,
         free_area: domain.area(),
-        scans: 0,
-        moves: 0,
-        distance: 0.0,
-        time: 0.0,
-        scan_time_total: 0.0,
-        move_time_total: 0.0,
-        travel_time_total: 0.0,
-        coverage: 0.0,
-        open_windows: 0,
         scans_upper: upper,
-        within_bound: false,
-        scans_lower: 0,
-        time_lower: 0.0,
-        certified_ratio: None,
-        error: String::new(),
+        ..SweepRow::failed(name, strategy, String::new())
     };
     let outcome = (|| -> Result<RunRecord, String> {
         let lower = lower.ok_or("the lower bounds could not be computed")?;

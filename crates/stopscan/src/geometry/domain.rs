@@ -38,7 +38,7 @@ pub enum InvalidEnvironment {
         count: usize,
     },
     /// A coordinate is NaN or infinite.
-    #[error("ring {ring}, vertex {index}: coordinate {value} is not finite")]
+    #[error("ring {ring}, vertex {index}: coordinate {} is not finite", crate::kernel::Num(*.value))]
     NonFiniteCoord {
         /// The ring.
         ring: usize,
@@ -50,7 +50,8 @@ pub enum InvalidEnvironment {
     /// A coordinate is outside the range where the exact predicates are guaranteed
     /// (|x| in [2^-142, 2^201], or 0). Rescale the input (metres are fine).
     #[error(
-        "ring {ring}, vertex {index}: coordinate {value} is outside the exact range [2^-142, 2^201]"
+        "ring {ring}, vertex {index}: coordinate {} is outside the exact range [2^-142, 2^201]",
+        crate::kernel::Num(*.value)
     )]
     OutOfRange {
         /// The ring.

@@ -45,10 +45,28 @@ pub fn read_roi(path: &Path, opts: &GridOptions) -> Result<GridRoi, LoadError> {
     let bytes =
         std::fs::read(path).map_err(|source| LoadError::Io { file: file.clone(), source })?;
     let name = path.file_stem().and_then(|s| s.to_str()).unwrap_or("roi").to_string();
-    if bytes.starts_with(b"\x89PNG") || bytes.starts_with(b"P5") || bytes.starts_with(b"P2") {
+    // An image extension decides whatever the bytes are, so that a damaged PNG is reported
+    // as a bad image, not as text that is not UTF-8.
+    let image_ext = path
+        .extension()
+        .and_then(|e| e.to_str())
+        .is_some_and(|e| ["png", "pgm"].iter().any(|x| e.eq_ignore_ascii_case(x)));
+    if image_ext
+        || bytes.starts_with(b"\x89PNG")
+        || bytes.starts_with(b"P5")
+        || bytes.starts_with(b"P2")
+    {
         return read_mask(path, &name, opts);
     }
-    let text = String::from_utf8_lossy(&bytes);
+    let Ok(text) = std::str::from_utf8(&bytes) else {
+        return Err(LoadError::Syntax {
+            file,
+            line: 0,
+            reason:
+                "binary content that is neither a PNG nor a PGM mask, nor a text grid or polygon"
+                    .into(),
+        });
+    };
     // GeoJSON opens with `{`, WKT with `P`, .pol with a digit, the benchmark format with `O`.
     let looks_like_grid = text
         .lines()
@@ -56,7 +74,16 @@ pub fn read_roi(path: &Path, opts: &GridOptions) -> Result<GridRoi, LoadError> {
         .find(|l| !l.is_empty() && !l.starts_with(';'))
         .is_none_or(|l| l.starts_with(['#', '.', 'S']));
     if looks_like_grid {
-        return parse_text_grid(&text, &file, &name, opts);
+        return parse_text_grid(text, &file, &name, opts);
+    }
+    if let Some([row, col]) = opts.start {
+        return Err(LoadError::Syntax {
+            file,
+            line: 0,
+            reason: format!(
+                "a start cell (row {row}, col {col}) applies to masks and text grids; a polygon's grid is centred on its own start (GeoJSON \"start\")"
+            ),
+        });
     }
     let env = super::read_environment(path)?;
     let start = match env.queries.first() {
@@ -123,6 +150,16 @@ pub fn parse_text_grid(
         row += 1;
     }
     let start = match (start, opts.start, cells.first()) {
+        (Some((s, line)), Some(o), _) if o != s => {
+            return Err(LoadError::Syntax {
+                file: file.into(),
+                line,
+                reason: format!(
+                    "the grid's start S (row {}, col {}) and the given start (row {}, col {}) disagree; give one",
+                    s[0], s[1], o[0], o[1]
+                ),
+            });
+        }
         (Some((s, _)), _, _) | (None, Some(s), _) => s,
         (None, None, Some(&first)) => first,
         (None, None, None) => {

@@ -21,12 +21,13 @@ pub enum LoadError {
         /// The system error.
         source: std::io::Error,
     },
-    /// The text is malformed at a line (1-based).
-    #[error("{file}:{line}: {reason}")]
+    /// The text is malformed at a line (1-based), or as a whole (line 0: the message then
+    /// names no line).
+    #[error("{file}{}: {reason}", line_suffix(*line))]
     Syntax {
         /// The file.
         file: String,
-        /// The line.
+        /// The line, 1-based; 0 when the whole file is at fault.
         line: usize,
         /// What is wrong.
         reason: String,
@@ -47,6 +48,11 @@ pub enum LoadError {
         /// The validation error (names the ring and vertex).
         source: InvalidEnvironment,
     },
+}
+
+/// `":LINE"` for a line, nothing for 0 (the whole file): `file:3: …` or `file: …`.
+pub(crate) fn line_suffix(line: usize) -> String {
+    if line == 0 { String::new() } else { format!(":{line}") }
 }
 
 /// An environment and the query points it may carry, in the local frame computations run
@@ -108,8 +114,13 @@ pub fn read_environment(path: &std::path::Path) -> Result<Environment, LoadError
 }
 
 fn read_in_input_frame(path: &std::path::Path) -> Result<Environment, LoadError> {
-    let text = std::fs::read_to_string(path)
+    let bytes = std::fs::read(path)
         .map_err(|source| LoadError::Io { file: path.display().to_string(), source })?;
+    let text = String::from_utf8(bytes).map_err(|_| LoadError::Syntax {
+        file: path.display().to_string(),
+        line: 0,
+        reason: "binary content: not a text environment file (GeoJSON, WKT, .pol, the visibility benchmark format, ROS map .yaml)".into(),
+    })?;
     let first =
         text.lines().map(str::trim).find(|l| !l.is_empty() && !l.starts_with('#')).unwrap_or("");
     let file = path.display().to_string();

@@ -56,6 +56,7 @@ fn read_yaml(path: &Path) -> Result<MapYaml, LoadError> {
         .map_err(|source| LoadError::Io { file: path.display().to_string(), source })?;
     let (mut image, mut resolution, mut origin, mut negate, mut free) =
         (None, None, None, false, None);
+    let mut occupied: Option<(f64, usize)> = None;
     for (i, raw) in text.lines().enumerate() {
         let line = raw.split('#').next().unwrap_or("").trim();
         if line.is_empty() {
@@ -72,6 +73,13 @@ fn read_yaml(path: &Path) -> Result<MapYaml, LoadError> {
                 .filter(|x| x.is_finite())
                 .ok_or_else(|| err(path, i + 1, format!("{key}: expected a number, got {v:?}")))
         };
+        let threshold = |v: &str, x: f64| {
+            if (0.0..=1.0).contains(&x) {
+                Ok(x)
+            } else {
+                Err(err(path, i + 1, format!("{key}: expected a number in [0, 1], got {v:?}")))
+            }
+        };
         match key.trim() {
             "image" => image = Some(value.to_string()),
             "resolution" => resolution = Some(num(value)?),
@@ -84,7 +92,15 @@ fn read_yaml(path: &Path) -> Result<MapYaml, LoadError> {
                 }
             }
             "negate" => negate = num(value)? != 0.0,
-            "free_thresh" => free = Some(num(value)?),
+            "free_thresh" => free = Some((threshold(value, num(value)?)?, i + 1)),
+            "occupied_thresh" => occupied = Some((threshold(value, num(value)?)?, i + 1)),
+            "mode" if !matches!(value, "trinary" | "scale") => {
+                return Err(err(
+                    path,
+                    i + 1,
+                    format!("mode: {value:?} is not supported (trinary or scale)"),
+                ));
+            }
             _ => {}
         }
     }
@@ -92,9 +108,28 @@ fn read_yaml(path: &Path) -> Result<MapYaml, LoadError> {
     let image = image.ok_or_else(|| missing("image"))?;
     let resolution = resolution.ok_or_else(|| missing("resolution"))?;
     if resolution <= 0.0 {
-        return Err(err(path, 0, format!("resolution must be positive, got {resolution}")));
+        return Err(err(
+            path,
+            0,
+            format!("resolution must be positive, got {}", crate::kernel::Num(resolution)),
+        ));
     }
-    let free_thresh = free.ok_or_else(|| missing("free_thresh"))?;
+    let (free_thresh, free_line) = free.ok_or_else(|| missing("free_thresh"))?;
+    // map_server reads occupied_thresh too; the free region only needs free_thresh, but a
+    // file whose thresholds contradict each other is wrong, not merely unusual.
+    if let Some((occ, line)) = occupied
+        && occ <= free_thresh
+    {
+        return Err(err(
+            path,
+            line,
+            format!(
+                "occupied_thresh {} is not above free_thresh {} (line {free_line}); map_server needs free_thresh < occupied_thresh",
+                crate::kernel::Num(occ),
+                crate::kernel::Num(free_thresh)
+            ),
+        ));
+    }
     let dir = path.parent().unwrap_or(Path::new("."));
     Ok(MapYaml {
         image: dir.join(image),

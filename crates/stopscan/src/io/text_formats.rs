@@ -33,7 +33,7 @@ fn build(file: &str, mut rings: Vec<Vec<Point>>) -> Result<Domain, LoadError> {
 pub fn parse_geojson(text: &str, file: &str) -> Result<Environment, LoadError> {
     let v: Value = serde_json::from_str(text)
         .map_err(|e| syntax(file, e.line(), format!("invalid JSON: {e}")))?;
-    let (geometry, props, path) = match v.get("type").and_then(Value::as_str) {
+    let (geometry, props, path, props_path) = match v.get("type").and_then(Value::as_str) {
         Some("FeatureCollection") => {
             let features = v
                 .get("features")
@@ -47,9 +47,12 @@ pub fn parse_geojson(text: &str, file: &str) -> Result<Environment, LoadError> {
                 })
                 .collect();
             match polys.as_slice() {
-                [(i, f)] => {
-                    (&f["geometry"], f.get("properties"), format!("features[{i}].geometry"))
-                }
+                [(i, f)] => (
+                    &f["geometry"],
+                    f.get("properties"),
+                    format!("features[{i}].geometry"),
+                    format!("features[{i}].properties"),
+                ),
                 [] => return Err(syntax(file, 0, "the FeatureCollection holds no Polygon")),
                 _ => {
                     return Err(syntax(
@@ -60,8 +63,10 @@ pub fn parse_geojson(text: &str, file: &str) -> Result<Environment, LoadError> {
                 }
             }
         }
-        Some("Feature") => (&v["geometry"], v.get("properties"), "geometry".to_string()),
-        Some("Polygon") => (&v, None, String::new()),
+        Some("Feature") => {
+            (&v["geometry"], v.get("properties"), "geometry".to_string(), "properties".to_string())
+        }
+        Some("Polygon") => (&v, None, String::new(), String::new()),
         Some(other) => {
             return Err(syntax(
                 file,
@@ -100,11 +105,31 @@ pub fn parse_geojson(text: &str, file: &str) -> Result<Environment, LoadError> {
         rings.push(pts);
     }
     let domain = build(file, rings)?;
-    let start = props
-        .and_then(|p| p.get("start"))
-        .and_then(Value::as_array)
-        .and_then(|a| Some([a.first()?.as_f64()?, a.get(1)?.as_f64()?]));
+    let start = match props.and_then(|p| p.get("start")) {
+        None => None,
+        Some(s) => Some(start_point(s).ok_or_else(|| {
+            let mut got = s.to_string();
+            if got.chars().count() > 60 {
+                got = got.chars().take(57).collect::<String>() + "...";
+            }
+            let hint =
+                if s.is_null() { " (leave the property out for the default start)" } else { "" };
+            syntax(
+                file,
+                0,
+                format!("{props_path}.start must be [x, y] (two finite numbers), got {got}{hint}"),
+            )
+        })?),
+    };
     Ok(Environment::new(domain, start.into_iter().collect()))
+}
+
+/// `[x, y]`: exactly two finite numbers (unlike coordinates, a start has no altitude).
+fn start_point(v: &Value) -> Option<Point> {
+    match v.as_array()?.as_slice() {
+        [x, y] => Some([x.as_f64()?, y.as_f64()?]).filter(|p| p.iter().all(|c| c.is_finite())),
+        _ => None,
+    }
 }
 
 /// Parses WKT `POLYGON` text.
@@ -185,9 +210,24 @@ pub fn parse_wkt(text: &str, file: &str) -> Result<Environment, LoadError> {
         skip_ws(&mut pos);
         match bytes.get(pos) {
             Some(b',') => pos += 1,
-            Some(b')') => break,
+            Some(b')') => {
+                pos += 1;
+                break;
+            }
             _ => return Err(syntax(file, line_at(pos), "expected ',' or ')' after a ring")),
         }
+    }
+    skip_ws(&mut pos);
+    if pos < bytes.len() {
+        let rest: String = text[pos..].chars().take(40).collect();
+        let more = if text[pos..].chars().count() > 40 { "…" } else { "" };
+        return Err(syntax(
+            file,
+            line_at(pos),
+            format!(
+                "unexpected text after the POLYGON: {rest:?}{more} (one POLYGON per file; MULTIPOLYGON is not supported)"
+            ),
+        ));
     }
     Ok(Environment::new(build(file, rings)?, vec![]))
 }
@@ -346,6 +386,22 @@ mod tests {
             ("POLYGON ((0 0, 1 0, 0 1)", parse_wkt, "expected ',' or ')'"),
             ("POLYGON ((0 0, 1 x, 0 1))", parse_wkt, "finite number"),
             ("POLYGON ((0 0, 2 2, 2 0, 0 2))", parse_wkt, "not simple"),
+            (
+                "POLYGON ((0 0, 1 0, 0 1))\nPOLYGON ((2 0, 3 0, 2 1))",
+                parse_wkt,
+                ":2: unexpected text",
+            ),
+            ("POLYGON ((0 0, 1 0, 0 1)))", parse_wkt, "unexpected text after the POLYGON"),
+            (
+                r#"{"type":"Feature","properties":{"start":[1,2,3]},"geometry":{"type":"Polygon","coordinates":[[[0,0],[4,0],[0,4]]]}}"#,
+                parse_geojson,
+                "properties.start must be [x, y]",
+            ),
+            (
+                r#"{"type":"Feature","properties":{"start":null},"geometry":{"type":"Polygon","coordinates":[[[0,0],[4,0],[0,4]]]}}"#,
+                parse_geojson,
+                "leave the property out",
+            ),
             ("3 0 0 1 0", parse_pol, "ends"),
             ("3 0 0 1/0 0 0 1", parse_pol, "p/q"),
             ("3 0 0 1 0 0 1 1 3 5 5 6 5 5 6", parse_pol, "outside"),

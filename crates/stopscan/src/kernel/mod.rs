@@ -14,6 +14,32 @@ pub const MIN_ABS: f64 = 1.793_662_034_335_766e-43;
 /// Largest magnitude accepted (as spade does: 2^201).
 pub const MAX_ABS: f64 = 3.213_876_088_517_98e60;
 
+/// A number as people read it in messages: Rust's shortest round-trip decimal for ordinary
+/// magnitudes (`0.25`, `-3`, `1500000`), scientific notation outside [1e-6, 1e16) (`1e300`,
+/// `-2.5e-12`), so that a user's `1e300` is echoed as `1e300` and not as 301 digits.
+///
+/// # Example
+/// ```
+/// use stopscan::kernel::Num;
+/// assert_eq!(Num(1e300).to_string(), "1e300");
+/// assert_eq!(Num(0.25).to_string(), "0.25");
+/// assert_eq!(Num(-1e-9).to_string(), "-1e-9");
+/// assert_eq!(Num(f64::NAN).to_string(), "NaN");
+/// ```
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Num(pub f64);
+
+impl std::fmt::Display for Num {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        let x = self.0;
+        if x == 0.0 || !x.is_finite() || (1e-6..1e16).contains(&x.abs()) {
+            write!(f, "{x}")
+        } else {
+            write!(f, "{x:e}")
+        }
+    }
+}
+
 /// Which side of a directed line a point lies on.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
 pub enum Orientation {

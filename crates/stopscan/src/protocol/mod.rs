@@ -37,7 +37,7 @@ impl Default for CostModel {
 #[non_exhaustive]
 pub enum InvalidCostModel {
     /// A term is negative, NaN or infinite. Give finite, non-negative times.
-    #[error("{term} must be finite and non-negative, got {value}")]
+    #[error("{term} must be finite and non-negative, got {}", crate::kernel::Num(*.value))]
     NegativeOrNonFinite {
         /// The offending field.
         term: &'static str,
@@ -45,7 +45,7 @@ pub enum InvalidCostModel {
         value: f64,
     },
     /// The speed is zero, negative, NaN or infinite. Give a finite positive speed.
-    #[error("speed must be finite and positive, got {0}")]
+    #[error("speed must be finite and positive, got {}", crate::kernel::Num(*.0))]
     NonPositiveSpeed(f64),
 }
 

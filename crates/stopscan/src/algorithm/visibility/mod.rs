@@ -155,7 +155,7 @@ pub(crate) fn polygon_area(o: Point, poly: &[Point]) -> f64 {
 pub enum VisibilityError {
     /// The viewpoint is outside the closed free space (outside the boundary, or inside a
     /// hole), or not finite.
-    #[error("the viewpoint ({0}, {1}) is outside the free space")]
+    #[error("the viewpoint ({}, {}) is outside the free space", crate::kernel::Num(*.0), crate::kernel::Num(*.1))]
     Outside(f64, f64),
     /// The triangulation could not be built.
     #[error(transparent)]

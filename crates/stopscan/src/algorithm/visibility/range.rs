@@ -13,6 +13,11 @@ use serde::{Deserialize, Serialize};
 use super::{BoundaryPiece, VisibilityRegion};
 use crate::kernel::Point;
 
+/// The smallest arc tolerance [`RangeRegion::to_polygon`] honours, relative to the radius
+/// (1e-9·R: 70,250 chords for a full circle). Below about 1.1e-16·R, `acos(1 − t/R)` is 0 and
+/// the chord count would be infinite.
+pub const MIN_ARC_TOLERANCE: f64 = 1e-9;
+
 /// A boundary piece of a range-limited region.
 #[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
 #[serde(untagged)]
@@ -91,7 +96,9 @@ impl RangeRegion {
     }
 
     /// A polygon within `tolerance` of the exact region: arcs become inscribed chords with
-    /// sagitta `R·(1 − cos(Δ/2)) ≤ tolerance`.
+    /// sagitta `R·(1 − cos(Δ/2)) ≤ tolerance`, but never finer than [`MIN_ARC_TOLERANCE`]`·R`
+    /// (chords of at least 8.9e-5 rad: at most 70,250 vertices for a full circle), so that a
+    /// tiny tolerance cannot ask for unbounded output.
     pub fn to_polygon(&self, tolerance: f64) -> Vec<Point> {
         let mut out: Vec<Point> = Vec::new();
         let push = |out: &mut Vec<Point>, p: Point| {
@@ -108,7 +115,7 @@ impl RangeRegion {
                 }
                 RangePiece::Arc(a) => {
                     let max_step = if tolerance > 0.0 && tolerance < a.radius {
-                        2.0 * (1.0 - tolerance / a.radius).acos()
+                        2.0 * (1.0 - tolerance.max(MIN_ARC_TOLERANCE * a.radius) / a.radius).acos()
                     } else {
                         std::f64::consts::FRAC_PI_2
                     };

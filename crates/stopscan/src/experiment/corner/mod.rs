@@ -106,25 +106,94 @@ pub fn monte_carlo(
     samples: usize,
     seed: u64,
 ) -> Result<MonteCarlo, ExperimentError> {
+    monte_carlo_with(list, setup, truth, samples, seed, &|_| {})
+}
+
+/// Samples per chunk of [`monte_carlo_with`]: each chunk is reduced on one thread.
+const MC_CHUNK: u64 = 1 << 16;
+/// Chunks run in parallel at a time: memory is bounded by one batch's summaries.
+const MC_BATCH: u64 = 256;
+
+/// Count, mean and sum of squared deviations of some samples (Welford, merged by Chan et al.).
+#[derive(Debug, Clone, Copy, Default)]
+struct Moments {
+    n: u64,
+    mean: f64,
+    m2: f64,
+}
+
+impl Moments {
+    fn push(&mut self, x: f64) {
+        self.n += 1;
+        let d = x - self.mean;
+        self.mean += d / self.n as f64;
+        self.m2 += d * (x - self.mean);
+    }
+
+    fn merge(self, o: Self) -> Self {
+        if o.n == 0 {
+            return self;
+        }
+        if self.n == 0 {
+            return o;
+        }
+        let n = self.n + o.n;
+        let d = o.mean - self.mean;
+        Self {
+            n,
+            mean: self.mean + d * o.n as f64 / n as f64,
+            m2: self.m2 + o.m2 + d * d * (self.n as f64 * o.n as f64 / n as f64),
+        }
+    }
+}
+
+/// [`monte_carlo`] in bounded memory, reporting progress: samples are cut into fixed chunks
+/// of 65,536 indices, each reduced in order on one thread, and the chunks' moments are merged
+/// in chunk order, so the result depends on the seed alone, not on the thread count. `tick`
+/// receives the number of samples finished after each chunk (from any thread).
+///
+/// # Errors
+/// [`ExperimentError::Sim`] if the strategy misbehaves (it cannot for a stop list).
+///
+/// # Complexity
+/// O(samples · stops) time, O(threads + 256) memory beyond the stop list.
+pub fn monte_carlo_with(
+    list: &StopList,
+    setup: &CornerSetup,
+    truth: &AngleDistribution,
+    samples: usize,
+    seed: u64,
+    tick: &(dyn Fn(u64) + Sync),
+) -> Result<MonteCarlo, ExperimentError> {
     let last_step = if list.charged_last() > crate::protocol::corner::CORNER {
         LastStep::Nominal
     } else {
         LastStep::Capped
     };
-    let times: Result<Vec<f64>, _> = (0..samples as u64)
-        .into_par_iter()
-        .map(|i| {
+    let total = samples as u64;
+    let chunks = total.div_ceil(MC_CHUNK);
+    let chunk = |c: u64| -> Result<Moments, ExperimentError> {
+        let mut m = Moments::default();
+        for i in c * MC_CHUNK..((c + 1) * MC_CHUNK).min(total) {
             let mut rng = ChaCha8Rng::seed_from_u64(sample_seed(seed, i));
             let world = CornerWorld { setup: *setup, theta: truth.sample(&mut rng), last_step };
             let mut strategy = list.clone().into_strategy("stops");
-            run(&world, &mut strategy, &mut NoObserver).map(|r| r.time.total())
-        })
-        .collect();
-    let times = times?;
-    let n = times.len().max(1) as f64;
-    let mean = times.iter().sum::<f64>() / n;
-    let var = times.iter().map(|t| (t - mean).powi(2)).sum::<f64>() / (n - 1.0).max(1.0);
-    Ok(MonteCarlo { mean, std_err: (var / n).sqrt(), samples })
+            m.push(run(&world, &mut strategy, &mut NoObserver)?.time.total());
+        }
+        tick(m.n);
+        Ok(m)
+    };
+    let mut all = Moments::default();
+    for batch in (0..chunks).step_by(MC_BATCH as usize) {
+        let parts: Vec<Moments> = (batch..(batch + MC_BATCH).min(chunks))
+            .into_par_iter()
+            .map(chunk)
+            .collect::<Result<_, _>>()?;
+        all = parts.into_iter().fold(all, Moments::merge);
+    }
+    let n = all.n.max(1) as f64;
+    let var = all.m2 / (n - 1.0).max(1.0);
+    Ok(MonteCarlo { mean: all.mean, std_err: (var / n).sqrt(), samples })
 }
 
 /// The corner paper's experimental setup: the robot on the wall 10 m from the corner,

@@ -12,6 +12,8 @@ use rand::Rng;
 use rand::RngExt;
 use serde::{Deserialize, Serialize};
 
+use crate::kernel::Num;
+
 /// A distribution of the edge angle θ on [0, π] (radians).
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 #[serde(tag = "kind", rename_all = "snake_case")]
@@ -42,6 +44,29 @@ pub enum AngleDistribution {
     },
 }
 
+/// The most buckets a bucketed or observed histogram may have (a width of 0.01°): its CDF
+/// costs one pass over the buckets, and sampling evaluates it 60 times per draw.
+pub const MAX_BUCKETS: usize = 18_000;
+
+/// The number of buckets of width `bucket` (radians) over [0, π].
+fn bucket_count(bucket: f64) -> Result<usize, InvalidDistribution> {
+    if !(bucket.is_finite() && bucket > 0.0 && bucket <= PI) {
+        return Err(InvalidDistribution::Parameters(format!(
+            "bucket width must be in (0, 180] degrees, got {}°",
+            Num(bucket.to_degrees())
+        )));
+    }
+    let n = (PI / bucket - 1e-9).ceil();
+    if n > MAX_BUCKETS as f64 {
+        return Err(InvalidDistribution::Parameters(format!(
+            "a bucket width of {}° gives {} buckets; use at least 0.01° (at most {MAX_BUCKETS} buckets)",
+            Num(bucket.to_degrees()),
+            Num(n)
+        )));
+    }
+    Ok(n as usize)
+}
+
 /// Why a distribution or its specification was rejected.
 #[derive(Debug, Clone, PartialEq, thiserror::Error)]
 #[non_exhaustive]
@@ -56,7 +81,7 @@ pub enum InvalidDistribution {
         reason: String,
     },
     /// A histogram or observation file is malformed; the line number is 1-based.
-    #[error("{file}:{line}: {reason}")]
+    #[error("{file}{}: {reason}", if *line == 0 { String::new() } else { format!(":{line}") })]
     File {
         /// The file.
         file: String,
@@ -79,8 +104,8 @@ impl AngleDistribution {
         if !(lo.is_finite() && hi.is_finite() && 0.0 <= lo && lo < hi && hi <= PI + 1e-12) {
             return Err(InvalidDistribution::Parameters(format!(
                 "uniform needs 0 <= lo < hi <= 180 degrees, got [{}, {}]",
-                lo.to_degrees(),
-                hi.to_degrees()
+                Num(lo.to_degrees()),
+                Num(hi.to_degrees())
             )));
         }
         Ok(Self::Uniform { lo, hi: hi.min(PI) })
@@ -94,15 +119,15 @@ impl AngleDistribution {
         if !(mean.is_finite() && sd.is_finite() && sd > 0.0) {
             return Err(InvalidDistribution::Parameters(format!(
                 "normal needs a finite mean and a positive standard deviation, got {}, {}",
-                mean.to_degrees(),
-                sd.to_degrees()
+                Num(mean.to_degrees()),
+                Num(sd.to_degrees())
             )));
         }
         if normal_cdf((PI - mean) / sd) - normal_cdf(-mean / sd) < 1e-12 {
             return Err(InvalidDistribution::Parameters(format!(
                 "normal({}, {}) has no mass in [0, 180] degrees",
-                mean.to_degrees(),
-                sd.to_degrees()
+                Num(mean.to_degrees()),
+                Num(sd.to_degrees())
             )));
         }
         Ok(Self::Normal { mean, sd })
@@ -130,28 +155,25 @@ impl AngleDistribution {
     /// # Errors
     /// If buckets are empty, overlap, leave [0, π] or the weights do not have a positive sum.
     pub fn histogram(mut buckets: Vec<(f64, f64, f64)>) -> Result<Self, InvalidDistribution> {
-        buckets.sort_by(|a, b| a.0.total_cmp(&b.0));
-        let total: f64 = buckets.iter().map(|b| b.2).sum();
-        if buckets.is_empty() || !(total.is_finite() && total > 0.0) {
+        if buckets.is_empty() {
             return Err(InvalidDistribution::Parameters(
-                "a histogram needs buckets with a positive total weight".into(),
+                "a histogram needs at least one bucket".into(),
             ));
         }
-        let mut prev_hi = 0.0_f64;
-        for &(lo, hi, w) in &buckets {
-            if !(lo.is_finite() && hi.is_finite() && lo < hi && lo >= prev_hi - 1e-12)
-                || hi > PI + 1e-9
-                || !(w.is_finite() && w >= 0.0)
-            {
-                return Err(InvalidDistribution::Parameters(format!(
-                    "histogram bucket [{}, {}] with weight {w} is empty, overlaps another, leaves \
-                     [0, 180] degrees or has a negative weight",
-                    lo.to_degrees(),
-                    hi.to_degrees()
-                )));
-            }
-            prev_hi = hi;
+        let total = check_buckets(&buckets).map_err(|f| {
+            let at = |k: usize| format!("bucket {} {}", k + 1, degrees(buckets[k]));
+            InvalidDistribution::Parameters(match f.other {
+                Some(o) => format!("histogram {} overlaps {}", at(f.index), at(o)),
+                None => format!("histogram {}: {}", at(f.index), f.reason),
+            })
+        })?;
+        if !(total.is_finite() && total > 0.0) {
+            return Err(InvalidDistribution::Parameters(format!(
+                "the histogram's weights sum to {}; give at least one positive weight",
+                Num(total)
+            )));
         }
+        buckets.sort_by(|a, b| a.0.total_cmp(&b.0));
         Ok(Self::Histogram {
             buckets: buckets.into_iter().map(|(l, h, w)| (l, h.min(PI), w / total)).collect(),
         })
@@ -162,25 +184,20 @@ impl AngleDistribution {
     /// no angle is ever believed impossible.
     ///
     /// # Errors
-    /// If the bucket width is not in (0, π] or an angle lies outside [0, π].
+    /// If the bucket width is not in (0, π], gives more than [`MAX_BUCKETS`] buckets, or an
+    /// angle lies outside [0, π].
     pub fn from_observations(
         angles: &[f64],
         bucket: f64,
         pseudo_count: f64,
     ) -> Result<Self, InvalidDistribution> {
-        if !(bucket.is_finite() && bucket > 0.0 && bucket <= PI) {
-            return Err(InvalidDistribution::Parameters(format!(
-                "bucket width must be in (0, 180] degrees, got {}",
-                bucket.to_degrees()
-            )));
-        }
-        let n = (PI / bucket - 1e-9).ceil() as usize;
+        let n = bucket_count(bucket)?;
         let mut counts = vec![pseudo_count.max(0.0); n];
         for &a in angles {
             if !(0.0..=PI).contains(&a) {
                 return Err(InvalidDistribution::Parameters(format!(
                     "observed angle {} is outside [0, 180] degrees",
-                    a.to_degrees()
+                    Num(a.to_degrees())
                 )));
             }
             counts[((a / bucket) as usize).min(n - 1)] += 1.0;
@@ -194,12 +211,9 @@ impl AngleDistribution {
     /// mass and is uniform inside), as the corner paper's Fig. 5 distributions are.
     ///
     /// # Errors
-    /// If the bucket width is not in (0, π].
+    /// If the bucket width is not in (0, π] or gives more than [`MAX_BUCKETS`] buckets.
     pub fn bucketed(&self, bucket: f64) -> Result<Self, InvalidDistribution> {
-        if !(bucket.is_finite() && bucket > 0.0 && bucket <= PI) {
-            return Err(InvalidDistribution::Parameters("bucket width out of range".into()));
-        }
-        let n = (PI / bucket - 1e-9).ceil() as usize;
+        let n = bucket_count(bucket)?;
         let buckets = (0..n).map(|k| {
             let lo = k as f64 * bucket;
             let hi = ((k + 1) as f64 * bucket).min(PI);
@@ -330,12 +344,59 @@ fn data_lines(path: &Path) -> Result<Vec<(usize, String)>, InvalidDistribution> 
         .collect())
 }
 
+/// What is wrong with one bucket of a histogram: its index, the bucket it overlaps (if that is
+/// the fault) and why.
+struct BucketFault {
+    index: usize,
+    other: Option<usize>,
+    reason: String,
+}
+
+/// `[LO°, HI°]` of a bucket given in radians.
+fn degrees(b: (f64, f64, f64)) -> String {
+    format!("[{}°, {}°]", Num(b.0.to_degrees()), Num(b.1.to_degrees()))
+}
+
+/// Checks each bucket on its own (finite, LO below HI, inside [0, π], weight finite and not
+/// negative), then that no two overlap; returns the total weight. One cause per fault.
+fn check_buckets(buckets: &[(f64, f64, f64)]) -> Result<f64, BucketFault> {
+    let fault = |index, reason: String| BucketFault { index, other: None, reason };
+    for (k, &(lo, hi, w)) in buckets.iter().enumerate() {
+        if !(lo.is_finite() && hi.is_finite()) {
+            return Err(fault(k, "LO and HI must be finite".into()));
+        }
+        if lo >= hi {
+            return Err(fault(k, "LO must be below HI".into()));
+        }
+        if lo < -1e-12 || hi > PI + 1e-9 {
+            return Err(fault(k, "leaves [0, 180] degrees".into()));
+        }
+        if !w.is_finite() {
+            return Err(fault(k, format!("weight {} is not finite", Num(w))));
+        }
+        if w < 0.0 {
+            return Err(fault(k, format!("weight {} is negative", Num(w))));
+        }
+    }
+    let mut order: Vec<usize> = (0..buckets.len()).collect();
+    order.sort_by(|&a, &b| buckets[a].0.total_cmp(&buckets[b].0).then(a.cmp(&b)));
+    for pair in order.windows(2) {
+        let (a, b) = (pair[0], pair[1]);
+        if buckets[b].0 < buckets[a].1 - 1e-12 {
+            let (first, later) = (a.min(b), a.max(b));
+            return Err(BucketFault { index: later, other: Some(first), reason: String::new() });
+        }
+    }
+    Ok(buckets.iter().map(|b| b.2).sum())
+}
+
 fn file_error(path: &Path, line: usize, reason: String) -> InvalidDistribution {
     InvalidDistribution::File { file: path.display().to_string(), line, reason }
 }
 
 fn read_histogram(path: &Path) -> Result<AngleDistribution, InvalidDistribution> {
     let mut buckets = Vec::new();
+    let mut lines = Vec::new();
     for (no, line) in data_lines(path)? {
         let fields: Vec<&str> =
             line.split(|c: char| c == ',' || c.is_whitespace()).filter(|f| !f.is_empty()).collect();
@@ -343,6 +404,7 @@ fn read_histogram(path: &Path) -> Result<AngleDistribution, InvalidDistribution>
         match values {
             Ok(v) if v.len() == 3 && v.iter().all(|x| x.is_finite()) => {
                 buckets.push((v[0].to_radians(), v[1].to_radians(), v[2]));
+                lines.push(no);
             }
             _ => {
                 return Err(file_error(
@@ -354,7 +416,31 @@ fn read_histogram(path: &Path) -> Result<AngleDistribution, InvalidDistribution>
         }
     }
     if buckets.is_empty() {
-        return Err(file_error(path, 0, "the histogram has no buckets".into()));
+        return Err(file_error(
+            path,
+            0,
+            "the histogram has no buckets ('LO HI WEIGHT' lines)".into(),
+        ));
+    }
+    match check_buckets(&buckets) {
+        Err(f) => {
+            let b = |k: usize| {
+                format!("[{}, {}]", Num(buckets[k].0.to_degrees()), Num(buckets[k].1.to_degrees()))
+            };
+            let reason = match f.other {
+                Some(o) => format!("bucket {} overlaps {} of line {}", b(f.index), b(o), lines[o]),
+                None => format!("bucket {}: {}", b(f.index), f.reason),
+            };
+            return Err(file_error(path, lines[f.index], reason));
+        }
+        Ok(total) if !(total.is_finite() && total > 0.0) => {
+            return Err(file_error(
+                path,
+                0,
+                format!("the weights sum to {}; give at least one positive weight", Num(total)),
+            ));
+        }
+        Ok(_) => {}
     }
     AngleDistribution::histogram(buckets).map_err(|e| file_error(path, 0, e.to_string()))
 }

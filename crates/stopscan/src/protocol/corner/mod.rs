@@ -8,7 +8,7 @@
 
 mod distribution;
 
-pub use distribution::{AngleDistribution, InvalidDistribution};
+pub use distribution::{AngleDistribution, InvalidDistribution, MAX_BUCKETS};
 
 use serde::{Deserialize, Serialize};
 
@@ -31,10 +31,10 @@ pub struct CornerSetup {
 #[non_exhaustive]
 pub enum InvalidCornerSetup {
     /// The distance must be finite and positive.
-    #[error("the distance to the corner must be finite and positive, got {0}")]
+    #[error("the distance to the corner must be finite and positive, got {}", crate::kernel::Num(*.0))]
     Distance(f64),
     /// The scan time must be positive: with free scans the problem is the continuous one.
-    #[error("the scan time must be positive for the corner problem, got {0}")]
+    #[error("the scan time must be positive for the corner problem, got {}", crate::kernel::Num(*.0))]
     ScanTime(f64),
 }
 

@@ -73,15 +73,37 @@ pub struct CornerMdp {
 #[non_exhaustive]
 pub enum CornerMdpError {
     /// The step must be positive and at most π/2.
-    #[error("the sampling step must be in (0, 90] degrees, got {0} degrees")]
+    #[error("the sampling step must be in (0, 90] degrees, got {} degrees", crate::kernel::Num(*.0))]
     Step(f64),
-    /// Too many stops for memory (MDP2 has n(n+1)/2 states).
-    #[error("{0} stops is too many for MDP2 (at most 20000)")]
-    TooLarge(usize),
+    /// Too many stops for memory: MDP2 has n(n+1)/2 states and an (n+1)² policy image, at
+    /// most [`MAX_STOPS_MDP2`] stops; MDP1 at most [`MAX_STOPS_MDP1`]. Use a larger step.
+    #[error(
+        "a step of {}° gives {} stops; {} handles at most {max} (a step of at least {}°)",
+        crate::kernel::Num(*.step_deg),
+        crate::kernel::Num(*.stops),
+        if *.memory == Memory::Last { "MDP2" } else { "MDP1" },
+        crate::kernel::Num(90.0 / *.max as f64)
+    )]
+    TooLarge {
+        /// The step, degrees.
+        step_deg: f64,
+        /// The stops it gives.
+        stops: f64,
+        /// Which MDP.
+        memory: Memory,
+        /// The most stops that MDP handles.
+        max: usize,
+    },
     /// The general solver failed.
     #[error(transparent)]
     Solver(#[from] MdpError),
 }
+
+/// The most stops MDP2 handles (0.0045° steps): 2·10⁸ states, a 400 MB policy image.
+pub const MAX_STOPS_MDP2: usize = 20_000;
+
+/// The most stops MDP1 handles (9·10⁻⁵° steps): about 85 bytes and 0.1 µs per stop.
+pub const MAX_STOPS_MDP1: usize = 1_000_000;
 
 /// The discretised circle of a [`CornerMdp`].
 struct Grid {
@@ -130,10 +152,20 @@ impl CornerMdp {
         if !(self.step.is_finite() && self.step > 0.0 && self.step <= CORNER + 1e-12) {
             return Err(CornerMdpError::Step(self.step.to_degrees()));
         }
-        let n = (CORNER / self.step - 1e-9).ceil() as usize;
-        if self.memory == Memory::Last && n > 20_000 {
-            return Err(CornerMdpError::TooLarge(n));
+        let stops = (CORNER / self.step - 1e-9).ceil();
+        let max = match self.memory {
+            Memory::Last => MAX_STOPS_MDP2,
+            Memory::None => MAX_STOPS_MDP1,
+        };
+        if stops > max as f64 {
+            return Err(CornerMdpError::TooLarge {
+                step_deg: self.step.to_degrees(),
+                stops,
+                memory: self.memory,
+                max,
+            });
         }
+        let n = stops as usize;
         let phi: Vec<f64> = (0..=n).map(|i| (i as f64 * self.step).min(CORNER)).collect();
         let cdf = phi.iter().map(|&p| self.belief.cdf(p)).collect();
         let step = (0..n)

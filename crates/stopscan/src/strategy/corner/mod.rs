@@ -11,7 +11,10 @@ pub mod mdp;
 pub mod registry;
 mod stops;
 
-pub use stops::{ExprecReading, InvalidStopList, StopList, StopListStrategy, exprec, unirec};
+pub use stops::{
+    ExprecReading, InvalidStopList, MAX_STOPS, StopList, StopListStrategy, exprec, unirec,
+    unirec_stops,
+};
 
 use crate::protocol::Action;
 use crate::protocol::corner::{CornerObservation, Stop};

@@ -26,7 +26,11 @@ pub struct StopList {
 #[non_exhaustive]
 pub enum InvalidStopList {
     /// Stop angles must be finite, positive and strictly increasing.
-    #[error("stop {index} (angle {angle} rad) is not finite, positive and above the previous stop")]
+    #[error(
+        "stop {} of the list ({}°) must be finite, positive and above the previous stop",
+        .index + 1,
+        crate::kernel::Num(.angle.to_degrees())
+    )]
     NotIncreasing {
         /// Position in the list.
         index: usize,
@@ -37,8 +41,34 @@ pub enum InvalidStopList {
     #[error("the nominal last-step charge is defined for the arc route only")]
     NominalNeedsArc,
     /// δ must be finite and positive.
-    #[error("delta must be finite and positive, got {0}")]
+    #[error("delta must be finite and positive, got {}", crate::kernel::Num(*.0))]
     Delta(f64),
+    /// δ is so small that UNIREC would need more than [`MAX_STOPS`] stops (16 bytes each,
+    /// and the exact evaluations are linear in them). Use a larger δ.
+    #[error(
+        "δ = {} needs {} UNIREC stops; at most {max} are allowed (δ ≥ {})",
+        crate::kernel::Num(*.delta),
+        crate::kernel::Num(*.stops),
+        crate::kernel::Num(CORNER / *.max as f64)
+    )]
+    TooMany {
+        /// δ.
+        delta: f64,
+        /// The stops it needs.
+        stops: f64,
+        /// The most allowed.
+        max: usize,
+    },
+}
+
+/// The most stops a stop list built from δ may have (UNIREC at δ ≈ 1.6e-8): 1.6 GB with its
+/// costs. Callers may set a lower limit (the CLI's default is 10⁷).
+pub const MAX_STOPS: usize = 100_000_000;
+
+/// The number of UNIREC stops at step δ: ⌈(π/2)/δ⌉ (1 when δ > 1), computed without building
+/// them.
+pub fn unirec_stops(delta: f64) -> f64 {
+    if delta > 1.0 { 1.0 } else { (CORNER / delta - AT_CORNER).ceil().max(1.0) }
 }
 
 impl StopList {
@@ -135,8 +165,12 @@ impl StopList {
 /// the robot goes straight to the corner.
 ///
 /// # Errors
-/// [`InvalidStopList::Delta`] for a non-positive δ, or an invalid route/last-step pair.
+/// [`InvalidStopList::Delta`] for a non-positive δ, [`InvalidStopList::TooMany`] when δ
+/// needs more than [`MAX_STOPS`] stops, or an invalid route/last-step pair.
 pub fn unirec(delta: f64, route: Route, last_step: LastStep) -> Result<StopList, InvalidStopList> {
+    if delta.is_finite() && delta > 0.0 && unirec_stops(delta) > MAX_STOPS as f64 {
+        return Err(InvalidStopList::TooMany { delta, stops: unirec_stops(delta), max: MAX_STOPS });
+    }
     let nominal = geometric_stops(delta, |i| i as f64 * delta)?;
     StopList::from_nominal(&nominal, route, last_step)
 }

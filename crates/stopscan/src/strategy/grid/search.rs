@@ -24,13 +24,49 @@ enum Phase {
     Done,
 }
 
+/// The lawn of a box of cells from `min` to `max` (inclusive): lanes three cells apart, the
+/// first one row in from the top (each pass sees its own row and the rows either side), the
+/// last no further than the box's last row, alternating east and west. Cells are computed from
+/// their index, so a lawn takes no memory whatever the box.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
+struct Lawn {
+    min: Cell,
+    max: Cell,
+}
+
+impl Lawn {
+    /// Lanes and cells per lane.
+    fn shape(self) -> (i64, i64) {
+        let rows = i64::from(self.max[0]) - i64::from(self.min[0]);
+        // Lane k lies on row min + 1 + 3k (capped at max); the last is the first at or below
+        // max − 1.
+        let lanes = ((rows - 2).max(0) + 2) / 3 + 1;
+        (lanes, i64::from(self.max[1]) - i64::from(self.min[1]) + 1)
+    }
+
+    /// The `i`-th cell of the sweep, if the sweep has that many.
+    fn cell(self, i: usize) -> Option<Cell> {
+        let (lanes, width) = self.shape();
+        let i = i64::try_from(i).ok()?;
+        let lane = i / width;
+        if lane >= lanes {
+            return None;
+        }
+        let row = (i64::from(self.min[0]) + 1 + 3 * lane).min(i64::from(self.max[0]));
+        let pos = i % width;
+        let col =
+            if lane % 2 == 0 { i64::from(self.min[1]) + pos } else { i64::from(self.max[1]) - pos };
+        Some([row as i32, col as i32])
+    }
+}
+
 /// A lawn-mowing search around an inner strategy. With no box, it passes everything through.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 pub struct LawnMower<S> {
     inner: S,
     /// A fresh inner strategy, for a new start after a false alarm.
     fresh: Option<Box<S>>,
-    lawn: Vec<Cell>,
+    lawn: Option<Lawn>,
     /// The next lawn cell when the search goes on.
     resume_at: usize,
     /// Whether the region was confirmed below the robot since the inner strategy started.
@@ -48,7 +84,7 @@ impl<S> LawnMower<S> {
         Self {
             inner,
             fresh: None,
-            lawn: Vec::new(),
+            lawn: None,
             resume_at: 0,
             confirmed: true,
             phase: Phase::Inner,
@@ -64,24 +100,10 @@ impl<S> LawnMower<S> {
     where
         S: Clone,
     {
-        let mut lawn = Vec::new();
-        let mut r = min[0] + 1;
-        let mut east = true;
-        loop {
-            let row = r.min(max[0]);
-            let cols: Vec<i32> =
-                if east { (min[1]..=max[1]).collect() } else { (min[1]..=max[1]).rev().collect() };
-            lawn.extend(cols.into_iter().map(|c| [row, c]));
-            if row >= max[0] - 1 {
-                break;
-            }
-            r += 3;
-            east = !east;
-        }
         Self {
             fresh: Some(Box::new(inner.clone())),
             inner,
-            lawn,
+            lawn: Some(Lawn { min, max }),
             resume_at: 0,
             confirmed: false,
             phase: Phase::Search(0),
@@ -102,7 +124,7 @@ impl<S> LawnMower<S> {
     }
 
     fn next_lawn_cell(&mut self, i: usize) -> Action<Cell> {
-        if let Some(&c) = self.lawn.get(i) {
+        if let Some(c) = self.lawn.and_then(|l| l.cell(i)) {
             self.phase = Phase::Search(i + 1);
             Action::MoveTo { to: c }
         } else {
@@ -114,7 +136,7 @@ impl<S> LawnMower<S> {
     fn after_inner(&mut self, a: Action<Cell>) -> Action<Cell> {
         match a {
             Action::Done
-                if self.launch.is_some() && self.launch != self.entry && !self.lawn.is_empty() =>
+                if self.launch.is_some() && self.launch != self.entry && self.lawn.is_some() =>
             {
                 self.home()
             }
@@ -199,5 +221,45 @@ impl<S: GridStrategy + Clone> GridStrategy for LawnMower<S> {
 
     fn note(&mut self) -> Option<&Record> {
         if matches!(self.phase, Phase::Inner | Phase::Homing) { self.inner.note() } else { None }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// The lawn as it was first written: every cell listed.
+    fn listed(min: Cell, max: Cell) -> Vec<Cell> {
+        let mut lawn = Vec::new();
+        let mut r = min[0] + 1;
+        let mut east = true;
+        loop {
+            let row = r.min(max[0]);
+            let cols: Vec<i32> =
+                if east { (min[1]..=max[1]).collect() } else { (min[1]..=max[1]).rev().collect() };
+            lawn.extend(cols.into_iter().map(|c| [row, c]));
+            if row >= max[0] - 1 {
+                break;
+            }
+            r += 3;
+            east = !east;
+        }
+        lawn
+    }
+
+    #[test]
+    fn the_computed_lawn_is_the_listed_one() {
+        for (r0, r1) in [(0, 0), (0, 1), (0, 2), (0, 3), (0, 4), (-5, 7), (-12, 0), (3, 20)] {
+            for (c0, c1) in [(0, 0), (-3, 4), (2, 9)] {
+                let (min, max) = ([r0, c0], [r1, c1]);
+                let lawn = Lawn { min, max };
+                let computed: Vec<Cell> = (0..).map_while(|i| lawn.cell(i)).collect();
+                assert_eq!(computed, listed(min, max), "{min:?}..{max:?}");
+            }
+        }
+        // A box far too large to list is still swept cell by cell.
+        let huge = Lawn { min: [-1_000_000, -1_000_000], max: [1_000_000, 1_000_000] };
+        assert_eq!(huge.cell(0), Some([-999_999, -1_000_000]));
+        assert_eq!(huge.cell(2_000_001), Some([-999_996, 1_000_000]));
     }
 }

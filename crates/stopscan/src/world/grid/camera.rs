@@ -136,7 +136,7 @@ impl CameraModel {
         robot: usize,
         clock: f64,
     ) -> Vec<Frame> {
-        (0..self.frames.max(1))
+        (0..self.frames)
             .map(|k| {
                 let v = self.classifier.classify(&self.render(roi, cell, seed, robot, clock, k));
                 Frame { centre: v.centre, sides: v.sides }

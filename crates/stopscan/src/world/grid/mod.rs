@@ -51,7 +51,7 @@ pub enum InvalidRoi {
         total: usize,
     },
     /// The cell size is not a positive finite number of metres.
-    #[error("the cell size must be a positive number of metres, got {0}")]
+    #[error("the cell size must be a positive number of metres, got {}", crate::kernel::Num(*.0))]
     CellSize(f64),
 }
 
