@@ -331,10 +331,10 @@ pub(crate) struct ExploreArgs {
     pub(crate) optimum_max_vertices: usize,
     /// Seconds for the optimum's search; when they run out, the best set found, the best
     /// proven lower bound and the gap are reported (0: skip the search).
-    #[arg(long, default_value_t = 5.0)]
+    #[arg(long, default_value_t = 5.0, allow_negative_numbers = true)]
     pub(crate) optimum_seconds: f64,
     /// Seconds for the lower bounds (valid when cut short, only weaker).
-    #[arg(long, default_value_t = 5.0)]
+    #[arg(long, default_value_t = 5.0, allow_negative_numbers = true)]
     pub(crate) bounds_seconds: f64,
     /// The integer-programming solver: microlp (built in); cbc and highs when built with the
     /// cargo features of those names.

@@ -190,6 +190,11 @@ impl Mesh {
         self.tri.len()
     }
 
+    /// The free-space triangles' corners (indices into [`Mesh::points`], counter-clockwise).
+    pub fn triangle_corners(&self) -> &[[u32; 3]] {
+        &self.tri
+    }
+
     /// The domain edge starting at vertex `v` (to the next vertex of its ring).
     pub fn edge_of(&self, v: u32) -> EdgeId {
         let ring = self.ring_start.partition_point(|&s| s <= v) - 1;

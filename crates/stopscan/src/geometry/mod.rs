@@ -7,6 +7,18 @@ pub use crate::kernel::Point;
 pub use domain::{Domain, EdgeId, InvalidEnvironment, Location};
 pub use frame::Frame;
 
+/// The distance from `p` to the closed segment `a b` (floating point).
+pub fn segment_distance(p: Point, a: Point, b: Point) -> f64 {
+    let (dx, dy) = (b[0] - a[0], b[1] - a[1]);
+    let l2 = dx * dx + dy * dy;
+    let t = if l2 > 0.0 {
+        (((p[0] - a[0]) * dx + (p[1] - a[1]) * dy) / l2).clamp(0.0, 1.0)
+    } else {
+        0.0
+    };
+    (p[0] - a[0] - t * dx).hypot(p[1] - a[1] - t * dy)
+}
+
 /// Signed area of a ring (positive when counter-clockwise).
 pub fn signed_area_of(ring: &[Point]) -> f64 {
     domain::signed_area(ring)

@@ -498,7 +498,7 @@ fn simplify_ring(ring: &[Point], tol: f64) -> Vec<Point> {
         }
         let (pa, pb) = (at(a), at(b));
         let (k, d) = (a + 1..b)
-            .map(|k| (k, seg_dist(at(k), pa, pb)))
+            .map(|k| (k, crate::geometry::segment_distance(at(k), pa, pb)))
             .max_by(|x, y| x.1.total_cmp(&y.1))
             .unwrap_or((a, 0.0));
         if d > tol {
@@ -512,15 +512,6 @@ fn simplify_ring(ring: &[Point], tol: f64) -> Vec<Point> {
 
 fn dist2(a: Point, b: Point) -> f64 {
     (a[0] - b[0]).powi(2) + (a[1] - b[1]).powi(2)
-}
-
-fn seg_dist(p: Point, a: Point, b: Point) -> f64 {
-    let l2 = dist2(a, b);
-    if l2 == 0.0 {
-        return dist2(p, a).sqrt();
-    }
-    let t = (((p[0] - a[0]) * (b[0] - a[0]) + (p[1] - a[1]) * (b[1] - a[1])) / l2).clamp(0.0, 1.0);
-    dist2(p, [a[0] + t * (b[0] - a[0]), a[1] + t * (b[1] - a[1])]).sqrt()
 }
 
 fn simplify_until_valid(path: &Path, rings: &[Vec<Point>], res: f64) -> Result<Domain, LoadError> {

@@ -148,9 +148,10 @@ pub struct Bounds {
     /// The best proven lower bound on the optimum over the candidates.
     #[serde(default)]
     pub optimum_lower: usize,
-    /// Seconds the search took, and the solver.
+    /// The search's time budget in seconds (the time it took is left out of the record, so
+    /// that the same run gives the same record; it is shown while it runs).
     #[serde(default)]
-    pub optimum_seconds: f64,
+    pub optimum_budget_seconds: f64,
     /// The integer-programming solver.
     #[serde(default)]
     pub optimum_solver: String,
@@ -288,7 +289,7 @@ impl RunRecord {
                     .unwrap_or_default(),
                 optimum_best: refs.optimum.best.as_ref().map(|b| b.viewpoints.len()),
                 optimum_lower: refs.optimum.lower,
-                optimum_seconds: refs.optimum.seconds,
+                optimum_budget_seconds: refs.optimum.budget_seconds,
                 optimum_solver: refs.optimum.solver.name().into(),
                 optimum_note: refs.optimum.note.clone(),
             },

@@ -62,6 +62,11 @@ pub struct LowerBounds {
     pub travel_witness: Option<Point>,
     /// Candidate witnesses examined.
     pub witnesses: usize,
+    /// The packing's witnesses: no viewpoint sees two of them, and the start sees none.
+    pub packing_points: Vec<Point>,
+    /// The fractional packing behind `lp`, scaled to be valid: at every point of the plane,
+    /// the weights of the witnesses seen from there sum to at most 1.
+    pub lp_weights: Vec<(Point, f64)>,
     /// Whether every stage finished within the time budget (the bounds are valid either way,
     /// only weaker when cut short).
     pub complete: bool,
@@ -113,7 +118,8 @@ pub fn lower_bounds(
     vis.query(start)?;
     let setup = witnesses(vis, start, range, deadline)?;
     let packing = packing(&setup, deadline);
-    let lp = fractional_packing(&setup, &packing, deadline);
+    let fractional = fractional_packing(&setup, &packing, deadline);
+    let lp = fractional.as_ref().map(|f| f.iter().map(|w| w.1).sum::<f64>());
     let (travel, travel_witness, travel_done) = travel(vis, start, &setup, deadline);
     let mut views = area;
     let mut views_rule = match range {
@@ -136,6 +142,8 @@ pub fn lower_bounds(
         views,
         views_rule,
         packing: packing.len(),
+        packing_points: packing.iter().map(|&k| setup.witnesses[k].at).collect(),
+        lp_weights: fractional.unwrap_or_default(),
         lp,
         area,
         travel,
@@ -242,23 +250,14 @@ fn near(poly: &[Point], bbox: [Point; 2], p: Point, tol: f64) -> bool {
 
 fn distance_to_boundary(poly: &[Point], p: Point) -> f64 {
     let n = poly.len();
-    (0..n).map(|i| segment_distance(p, poly[i], poly[(i + 1) % n])).fold(f64::INFINITY, f64::min)
+    (0..n)
+        .map(|i| crate::geometry::segment_distance(p, poly[i], poly[(i + 1) % n]))
+        .fold(f64::INFINITY, f64::min)
 }
 
 /// The distance from `p` to the closed polygon (0 inside).
 fn distance_to(poly: &[Point], p: Point) -> f64 {
     if ring_side(poly, p) == RingSide::Outside { distance_to_boundary(poly, p) } else { 0.0 }
-}
-
-fn segment_distance(p: Point, a: Point, b: Point) -> f64 {
-    let (dx, dy) = (b[0] - a[0], b[1] - a[1]);
-    let l2 = dx * dx + dy * dy;
-    let t = if l2 > 0.0 {
-        (((p[0] - a[0]) * dx + (p[1] - a[1]) * dy) / l2).clamp(0.0, 1.0)
-    } else {
-        0.0
-    };
-    (p[0] - a[0] - t * dx).hypot(p[1] - a[1] - t * dy)
 }
 
 fn boxes_overlap(a: [Point; 2], b: [Point; 2], tol: f64) -> bool {
@@ -292,10 +291,10 @@ fn apart(a: &Witness, b: &Witness, tol: f64) -> bool {
             let (r, s) = (b.poly[j], b.poly[(j + 1) % nb]);
             if boxes_overlap(eb, bounds_of(&[r, s]), tol)
                 && (crate::kernel::segments_intersect(p, q, r, s)
-                    || segment_distance(r, p, q) <= tol
-                    || segment_distance(s, p, q) <= tol
-                    || segment_distance(p, r, s) <= tol
-                    || segment_distance(q, r, s) <= tol)
+                    || crate::geometry::segment_distance(r, p, q) <= tol
+                    || crate::geometry::segment_distance(s, p, q) <= tol
+                    || crate::geometry::segment_distance(p, r, s) <= tol
+                    || crate::geometry::segment_distance(q, r, s) <= tol)
             {
                 return false;
             }
@@ -326,9 +325,14 @@ const LP_ROUNDS: usize = 8;
 /// Constraints added per round.
 const LP_CUTS: usize = 400;
 
-/// The valid fractional packing value (see the module documentation), or `None` when it
-/// could not be computed within the budget.
-fn fractional_packing(setup: &Setup, packing: &[usize], deadline: Option<Instant>) -> Option<f64> {
+/// The best valid fractional packing found (see the module documentation): witnesses and
+/// their weights, already divided by the largest depth; `None` when none was found within the
+/// budget.
+fn fractional_packing(
+    setup: &Setup,
+    packing: &[usize],
+    deadline: Option<Instant>,
+) -> Option<Vec<(Point, f64)>> {
     if setup.witnesses.is_empty() || expired(deadline) {
         return None;
     }
@@ -353,7 +357,7 @@ fn fractional_packing(setup: &Setup, packing: &[usize], deadline: Option<Instant
             add(row(p), &mut rows);
         }
     }
-    let mut best: Option<f64> = None;
+    let mut best: Option<(f64, Vec<(Point, f64)>)> = None;
     for _round in 0..LP_ROUNDS {
         if expired(deadline) {
             break;
@@ -362,8 +366,12 @@ fn fractional_packing(setup: &Setup, packing: &[usize], deadline: Option<Instant
         let support: Vec<usize> = (0..ws.len()).filter(|&i| y[i] > 1e-9).collect();
         let total: f64 = support.iter().map(|&i| y[i]).sum();
         let (depth, worst) = arrangement_depths(&ws, &support, &y, tol, deadline)?;
-        let value = total / depth.max(1.0);
-        best = Some(best.map_or(value, |b: f64| b.max(value)));
+        let scale = depth.max(1.0);
+        let value = total / scale;
+        if best.as_ref().is_none_or(|b| value > b.0) {
+            let weights = support.iter().map(|&i| (ws[i].at, y[i] / scale)).collect();
+            best = Some((value, weights));
+        }
         if depth <= 1.0 + 1e-9 {
             break;
         }
@@ -375,7 +383,7 @@ fn fractional_packing(setup: &Setup, packing: &[usize], deadline: Option<Instant
             break;
         }
     }
-    best
+    best.map(|b| b.1)
 }
 
 /// Maximise `Σ y` subject to `Σ_{i ∈ row} y_i ≤ 1` for every row, `0 ≤ y ≤ 1`.

@@ -205,7 +205,10 @@ pub fn references(
             None => problem.insert(Problem::new(vis, start)?),
         };
         let deadline = deadline_in(limits.optimum_seconds);
-        optimum::solve(p, lower.views, greedy_set.as_ref(), limits.solver, deadline, progress)?
+        let mut report =
+            optimum::solve(p, lower.views, greedy_set.as_ref(), limits.solver, deadline, progress)?;
+        report.budget_seconds = limits.optimum_seconds;
+        report
     };
     Ok(References { lower, greedy: greedy_set.map(|g| g.set), optimum })
 }
@@ -383,7 +386,10 @@ pub fn optimum(
     let lower = lower_bounds(vis, start, None, deadline_in(seconds))?;
     let mut p = Problem::new(vis, start)?;
     let g = greedy_on(&mut p)?;
-    optimum::solve(&mut p, lower.views, Some(&g), solver, deadline_in(seconds), &mut |_| {})
+    let mut report =
+        optimum::solve(&mut p, lower.views, Some(&g), solver, deadline_in(seconds), &mut |_| {})?;
+    report.budget_seconds = seconds;
+    Ok(report)
 }
 
 /// A greedy set: the viewpoints and the candidates they are.

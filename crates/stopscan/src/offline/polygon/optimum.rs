@@ -98,6 +98,8 @@ pub struct OptimumReport {
     pub solver: Solver,
     /// Seconds spent.
     pub seconds: f64,
+    /// The time budget it had.
+    pub budget_seconds: f64,
     /// Integer programs solved (each adds cuts or witnesses to the one before).
     pub rounds: usize,
     /// Why it was skipped or stopped.
@@ -113,6 +115,7 @@ impl OptimumReport {
             lower,
             solver,
             seconds: 0.0,
+            budget_seconds: 0.0,
             rounds: 0,
             note,
         }
@@ -166,6 +169,7 @@ pub(super) fn solve(
         lower: geometric_lower.max(1),
         solver,
         seconds: 0.0,
+        budget_seconds: f64::INFINITY,
         rounds: 0,
         note: String::new(),
     };
@@ -470,7 +474,7 @@ fn strengthen(
             break;
         };
         value = Some(v);
-        let fresh: Vec<_> = fractional_separators(p, &x, ROOT_CUTS)
+        let fresh: Vec<_> = fractional_separators(p, &x, ROOT_CUTS, deadline)
             .into_iter()
             .filter(|c| known.insert(c.clone()))
             .collect();
@@ -487,22 +491,8 @@ fn relaxation(
     m: &Model,
     deadline: Option<Instant>,
 ) -> Result<Option<(Vec<f64>, f64)>, OfflineError> {
-    use microlp::{ComparisonOp, OptimizationDirection, Problem, SolveOptions, SolveOutcome};
-    let mut p = Problem::new(OptimizationDirection::Minimize);
-    let x: Vec<microlp::Variable> =
-        (0..m.n).map(|c| p.add_var(1.0, if c == 0 { (1.0, 1.0) } else { (0.0, 1.0) })).collect();
-    for row in m.covers {
-        p.add_constraint(
-            row.iter().map(|&c| (x[c], 1.0)).collect::<Vec<_>>(),
-            ComparisonOp::Ge,
-            1.0,
-        );
-    }
-    for (sep, u) in m.cuts {
-        let mut e: Vec<(microlp::Variable, f64)> = sep.iter().map(|&z| (x[z], 1.0)).collect();
-        e.push((x[*u], -1.0));
-        p.add_constraint(e, ComparisonOp::Ge, 0.0);
-    }
+    use microlp::{SolveOptions, SolveOutcome};
+    let (p, x) = microlp_model(m, false);
     let mut opts = SolveOptions::default();
     opts.time_limit = remaining(deadline);
     match p.solve_with(opts) {
@@ -518,7 +508,12 @@ fn relaxation(
 /// the minimum node separator between the start and `t` in the visibility graph, with node
 /// weights `x` (a maximum flow through split nodes); a separator lighter than `x_t` gives the
 /// cut `Σ_{z ∈ separator} x_z ≥ x_t`. At most `limit` cuts, heaviest targets first.
-fn fractional_separators(p: &Problem, x: &[f64], limit: usize) -> Vec<(Vec<usize>, usize)> {
+fn fractional_separators(
+    p: &Problem,
+    x: &[f64],
+    limit: usize,
+    deadline: Option<Instant>,
+) -> Vec<(Vec<usize>, usize)> {
     use pathfinding::directed::edmonds_karp::{EdmondsKarp, SparseCapacity};
     const SCALE: f64 = 1e6;
     const INF: i64 = i64::MAX / 4;
@@ -527,7 +522,7 @@ fn fractional_separators(p: &Problem, x: &[f64], limit: usize) -> Vec<(Vec<usize
     targets.sort_by(|&a, &b| x[b].total_cmp(&x[a]).then(a.cmp(&b)));
     let mut cuts = Vec::new();
     for t in targets {
-        if cuts.len() >= limit {
+        if cuts.len() >= limit || deadline.is_some_and(|d| Instant::now() >= d) {
             break;
         }
         // Node v enters at 2v and leaves at 2v + 1; the flow leaves the start and enters t.
@@ -586,7 +581,10 @@ fn run_solver(
             warm,
             deadline,
             good_lp::highs,
-            |p| p.set_verbose(false).set_threads(1),
+            |mut p| {
+                p.set_verbose(false);
+                p.set_threads(1)
+            },
             |_| None,
         ),
         #[allow(unreachable_patterns)]
@@ -598,30 +596,40 @@ fn remaining(deadline: Option<Instant>) -> Option<std::time::Duration> {
     deadline.map(|t| t.saturating_duration_since(Instant::now()))
 }
 
-fn solve_microlp(
-    m: &Model,
-    warm: Option<&[usize]>,
-    deadline: Option<Instant>,
-) -> Result<Solved, OfflineError> {
-    use microlp::{ComparisonOp, OptimizationDirection, Problem, SolveOptions, SolveOutcome};
+/// The program as microlp takes it: binary variables, or their relaxation to [0, 1].
+fn microlp_model(m: &Model, binary: bool) -> (microlp::Problem, Vec<microlp::Variable>) {
+    use microlp::{ComparisonOp, OptimizationDirection, Problem};
     let mut p = Problem::new(OptimizationDirection::Minimize);
-    let x: Vec<microlp::Variable> = (0..m.n).map(|_| p.add_binary_var(1.0)).collect();
-    p.add_constraint([(x[0], 1.0)], ComparisonOp::Eq, 1.0);
-    for &c in m.out {
-        p.add_constraint([(x[c], 1.0)], ComparisonOp::Eq, 0.0);
-    }
+    let x: Vec<microlp::Variable> = (0..m.n)
+        .map(|c| {
+            let fixed = if c == 0 { Some(1.0) } else { m.out.contains(&c).then_some(0.0) };
+            match (binary, fixed) {
+                (true, None) => p.add_binary_var(1.0),
+                (true, Some(v)) => p.add_integer_var(1.0, (v as i32, v as i32)),
+                (false, None) => p.add_var(1.0, (0.0, 1.0)),
+                (false, Some(v)) => p.add_var(1.0, (v, v)),
+            }
+        })
+        .collect();
     for row in m.covers {
-        p.add_constraint(
-            row.iter().map(|&c| (x[c], 1.0)).collect::<Vec<_>>(),
-            ComparisonOp::Ge,
-            1.0,
-        );
+        let e: Vec<(microlp::Variable, f64)> = row.iter().map(|&c| (x[c], 1.0)).collect();
+        p.add_constraint(e, ComparisonOp::Ge, 1.0);
     }
     for (sep, u) in m.cuts {
         let mut e: Vec<(microlp::Variable, f64)> = sep.iter().map(|&z| (x[z], 1.0)).collect();
         e.push((x[*u], -1.0));
         p.add_constraint(e, ComparisonOp::Ge, 0.0);
     }
+    (p, x)
+}
+
+fn solve_microlp(
+    m: &Model,
+    warm: Option<&[usize]>,
+    deadline: Option<Instant>,
+) -> Result<Solved, OfflineError> {
+    use microlp::{SolveOptions, SolveOutcome};
+    let (p, x) = microlp_model(m, true);
     let mut opts = SolveOptions::default();
     opts.time_limit = remaining(deadline);
     opts.warm_start = warm.map(|w| {
@@ -648,7 +656,9 @@ fn solve_microlp(
 }
 
 /// A solver through good_lp: `configure` sets it up (quiet, one thread), `bound` reads the
-/// best proven bound from a stopped solution where the solver reports one.
+/// best proven bound from a stopped solution where the solver reports one. HiGHS gets no
+/// warm start: through good_lp 1.15 it then returned non-optimal sets as optimal (3 of 8
+/// benchmark polygons), and without one it agrees with microlp and CBC.
 #[cfg(any(feature = "cbc", feature = "highs"))]
 fn solve_good_lp<S: good_lp::Solver>(
     m: &Model,
@@ -672,7 +682,7 @@ where
     if let Some(t) = remaining(deadline) {
         model = model.with_time_limit(t.as_secs_f64().max(0.01));
     }
-    if let Some(w) = warm {
+    if let Some(w) = warm.filter(|_| S::Model::name() != "Highs") {
         let mut v: Vec<(Variable, f64)> = x.iter().map(|&xi| (xi, 0.0)).collect();
         for &c in w {
             v[c].1 = 1.0;
@@ -694,6 +704,11 @@ where
     let sol = model.solve().map_err(|e| OfflineError::Solver(e.to_string()))?;
     Ok(match sol.status() {
         SolutionStatus::Optimal => {
+            Solved::Optimal((0..m.n).filter(|&c| sol.value(x[c]) > 0.5).collect())
+        }
+        // HiGHS stops at a relative gap of 1e-4 by default: below one view for fewer than
+        // 10,000 candidates, so with an integer objective it has proven the optimum.
+        SolutionStatus::GapLimit if S::Model::name() == "Highs" && m.n < 10_000 => {
             Solved::Optimal((0..m.n).filter(|&c| sol.value(x[c]) > 0.5).collect())
         }
         _ => Solved::Stopped(bound(&sol)),

@@ -90,7 +90,7 @@ impl RangeLimited {
         let start = (0..m).filter(|&i| is_wall(&view.pieces[i])).min_by(|&i, &j| {
             let d = |k: usize| {
                 let (a, b) = view.pieces[k].ends();
-                segment_distance(at, a, b)
+                crate::geometry::segment_distance(at, a, b)
             };
             d(i).total_cmp(&d(j))
         })?;
@@ -179,18 +179,6 @@ impl RangeLimited {
         }
         Action::Done
     }
-}
-
-/// The distance from `p` to the segment `a b`.
-fn segment_distance(p: Point, a: Point, b: Point) -> f64 {
-    let (dx, dy) = (b[0] - a[0], b[1] - a[1]);
-    let l2 = dx * dx + dy * dy;
-    let t = if l2 > 0.0 {
-        (((p[0] - a[0]) * dx + (p[1] - a[1]) * dy) / l2).clamp(0.0, 1.0)
-    } else {
-        0.0
-    };
-    (p[0] - a[0] - t * dx).hypot(p[1] - a[1] - t * dy)
 }
 
 impl PolygonStrategy for RangeLimited {
