@@ -118,9 +118,12 @@ pub fn lower_bounds(
     vis.query(start)?;
     let setup = witnesses(vis, start, range, deadline)?;
     let packing = packing(&setup, deadline);
-    let fractional = fractional_packing(&setup, &packing, deadline);
-    let lp = fractional.as_ref().map(|f| f.iter().map(|w| w.1).sum::<f64>());
+    // Travel before the fractional packing: it is cheap and the time bound needs it; the
+    // packing LP then has what is left of the budget.
     let (travel, travel_witness, travel_done) = travel(vis, start, &setup, deadline);
+    let beat = packing.len().max(area.saturating_sub(1));
+    let fractional = fractional_packing(&setup, &packing, beat, deadline);
+    let lp = fractional.as_ref().map(|f| f.iter().map(|w| w.1).sum::<f64>());
     let mut views = area;
     let mut views_rule = match range {
         Some(_) => format!("area / πR² = {area}"),
@@ -245,7 +248,21 @@ fn near(poly: &[Point], bbox: [Point; 2], p: Point, tol: f64) -> bool {
     {
         return false;
     }
-    ring_side(poly, p) != RingSide::Outside || distance_to_boundary(poly, p) <= tol
+    ring_side(poly, p) != RingSide::Outside || within(poly, p, tol)
+}
+
+/// Whether `p` lies within `tol` of the polygon's boundary (edges whose box, grown by `tol`,
+/// misses `p` are skipped without measuring).
+fn within(poly: &[Point], p: Point, tol: f64) -> bool {
+    let n = poly.len();
+    (0..n).any(|i| {
+        let (a, b) = (poly[i], poly[(i + 1) % n]);
+        p[0] >= a[0].min(b[0]) - tol
+            && p[0] <= a[0].max(b[0]) + tol
+            && p[1] >= a[1].min(b[1]) - tol
+            && p[1] <= a[1].max(b[1]) + tol
+            && crate::geometry::segment_distance(p, a, b) <= tol
+    })
 }
 
 fn distance_to_boundary(poly: &[Point], p: Point) -> f64 {
@@ -328,9 +345,14 @@ const LP_CUTS: usize = 400;
 /// The best valid fractional packing found (see the module documentation): witnesses and
 /// their weights, already divided by the largest depth; `None` when none was found within the
 /// budget.
+///
+/// It can only raise the bound on views when its value exceeds `beat` (the packing's size):
+/// the relaxation's value only falls as constraints are added, so the rounds stop as soon as
+/// its ceiling cannot beat `beat`, or cannot beat the valid value already found.
 fn fractional_packing(
     setup: &Setup,
     packing: &[usize],
+    beat: usize,
     deadline: Option<Instant>,
 ) -> Option<Vec<(Point, f64)>> {
     if setup.witnesses.is_empty() || expired(deadline) {
@@ -365,6 +387,11 @@ fn fractional_packing(
         let y = solve_packing_lp(ws.len(), &rows, deadline)?;
         let support: Vec<usize> = (0..ws.len()).filter(|&i| y[i] > 1e-9).collect();
         let total: f64 = support.iter().map(|&i| y[i]).sum();
+        let ceiling = |v: f64| (v - 1e-9).ceil().max(0.0) as usize;
+        let found = best.as_ref().map_or(0, |b| ceiling(b.0));
+        if ceiling(total) <= beat.max(found) {
+            break;
+        }
         let (depth, worst) = arrangement_depths(&ws, &support, &y, tol, deadline)?;
         let scale = depth.max(1.0);
         let value = total / scale;
@@ -459,11 +486,26 @@ fn arrangement_depths(
             }
         }
     }
+    // The weights of the boxes around a vertex bound its depth; visiting the vertices by that
+    // bound, the deepest is found early and the rest, which cannot matter (no deeper than it,
+    // and not above 1), are skipped.
+    let mut order: Vec<(f64, Point)> = vertices
+        .iter()
+        .map(|&g| {
+            let b =
+                support.iter().filter(|&&i| boxes_overlap(ws[i].bbox, [g, g], tol)).map(|&i| y[i]);
+            (b.sum(), g)
+        })
+        .collect();
+    order.sort_by(|a, b| b.0.total_cmp(&a.0));
     let mut deep: Vec<(f64, Point)> = Vec::new();
     let mut max = 0.0_f64;
-    for (k, &g) in vertices.iter().enumerate() {
+    for (k, &(bound, g)) in order.iter().enumerate() {
         if k % 1024 == 0 && expired(deadline) {
             return None;
+        }
+        if bound <= max && bound <= 1.0 + 1e-9 {
+            break;
         }
         let depth: f64 =
             support.iter().filter(|&&i| near(&ws[i].poly, ws[i].bbox, g, tol)).map(|&i| y[i]).sum();
