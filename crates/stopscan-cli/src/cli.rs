@@ -333,6 +333,10 @@ pub(crate) struct ExploreArgs {
     /// proven lower bound and the gap are reported (0: skip the search).
     #[arg(long, default_value_t = 5.0, allow_negative_numbers = true)]
     pub(crate) optimum_seconds: f64,
+    /// Branch-and-bound nodes for the optimum's search (microlp): a budget that gives the
+    /// same result on every machine, unlike --optimum-seconds (which still applies).
+    #[arg(long, allow_negative_numbers = true, value_parser = count_at_least(1))]
+    pub(crate) optimum_nodes: Option<usize>,
     /// Seconds for the lower bounds (valid when cut short, only weaker).
     #[arg(long, default_value_t = 5.0, allow_negative_numbers = true)]
     pub(crate) bounds_seconds: f64,

@@ -393,6 +393,7 @@ fn limits_of(a: &ExploreArgs) -> anyhow::Result<ReferenceLimits> {
         greedy_max_vertices: a.greedy_max_vertices,
         optimum_max_vertices: a.optimum_max_vertices,
         optimum_seconds: a.optimum_seconds,
+        optimum_nodes: a.optimum_nodes.map(|n| n as u64),
         bounds_seconds: a.bounds_seconds,
         solver: stopscan::offline::polygon::Solver::by_name(&a.solver)
             .map_err(|e| anyhow::anyhow!("--solver: {e}"))?,

@@ -142,6 +142,9 @@ fn benchmark_files(dir: &std::path::Path) -> Vec<std::path::PathBuf> {
     out
 }
 
+/// Branch-and-bound nodes for each environment's exact optimum in `views-benchmarks`.
+const OPTIMUM_NODES: u64 = 20_000;
+
 /// Every strategy on every benchmark environment below `data`, scans against the paper's
 /// r + 1, with the offline references where they are computed.
 fn views_benchmarks(data: &std::path::Path) -> Result<Reproduction, ExperimentError> {
@@ -162,7 +165,14 @@ fn views_benchmarks(data: &std::path::Path) -> Result<Reproduction, ExperimentEr
         inputs.push((name, env.domain, start));
     }
     let names: Vec<&str> = crate::strategy::polygon::REGISTRY.iter().map(|r| r.0).collect();
-    let limits = crate::offline::polygon::ReferenceLimits::default();
+    // A node budget, not a clock, bounds the optimum's search (with a generous clock as a
+    // safety net), so that the reproduction prints the same on every machine.
+    let limits = crate::offline::polygon::ReferenceLimits {
+        optimum_seconds: 600.0,
+        optimum_nodes: Some(OPTIMUM_NODES),
+        optimum_max_vertices: 200,
+        ..crate::offline::polygon::ReferenceLimits::default()
+    };
     let sweep_rows =
         sweep(&inputs, &names, &CostModel::default(), None, limits.bounds_seconds, &|| {});
     let refs: Vec<Result<References, String>> = inputs
@@ -214,10 +224,9 @@ fn views_benchmarks(data: &std::path::Path) -> Result<Reproduction, ExperimentEr
             "{complete} of {runs} runs complete: no window left open (the exact certificate) and coverage ≥ 1 − 1e-9"
         ),
         format!(
-            "offline references: greedy for up to {} vertices, the exact optimum for up to {} within {} s each (solver {}); lower bounds within {} s (witnesses with disjoint visibility regions, a valid fractional packing, the distance to the farthest witness's region)",
+            "offline references: greedy for up to {} vertices, the exact optimum for up to {} within {OPTIMUM_NODES} branch-and-bound nodes each (solver {}; a machine-independent budget); lower bounds within {} s (witnesses with disjoint visibility regions, a valid fractional packing, the distance to the farthest witness's region)",
             limits.greedy_max_vertices,
             limits.optimum_max_vertices,
-            limits.optimum_seconds,
             limits.solver.name(),
             limits.bounds_seconds
         ),

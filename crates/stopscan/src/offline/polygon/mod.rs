@@ -124,6 +124,10 @@ pub struct ReferenceLimits {
     pub optimum_max_vertices: usize,
     /// Seconds for the exact optimum's search.
     pub optimum_seconds: f64,
+    /// Branch-and-bound nodes for the exact optimum's search, when set (microlp only): a
+    /// budget that does not depend on the machine, so results cut short by it are the same
+    /// everywhere.
+    pub optimum_nodes: Option<u64>,
     /// Seconds for the lower bounds.
     pub bounds_seconds: f64,
     /// The integer-programming solver.
@@ -136,6 +140,7 @@ impl Default for ReferenceLimits {
             greedy_max_vertices: 1000,
             optimum_max_vertices: 400,
             optimum_seconds: 5.0,
+            optimum_nodes: None,
             bounds_seconds: 5.0,
             solver: Solver::default(),
         }
@@ -148,6 +153,7 @@ impl ReferenceLimits {
         greedy_max_vertices: 0,
         optimum_max_vertices: 0,
         optimum_seconds: 0.0,
+        optimum_nodes: None,
         bounds_seconds: 5.0,
         solver: Solver::Microlp,
     };
@@ -205,8 +211,15 @@ pub fn references(
             None => problem.insert(Problem::new(vis, start)?),
         };
         let deadline = deadline_in(limits.optimum_seconds);
-        let mut report =
-            optimum::solve(p, lower.views, greedy_set.as_ref(), limits.solver, deadline, progress)?;
+        let mut report = optimum::solve(
+            p,
+            lower.views,
+            greedy_set.as_ref(),
+            limits.solver,
+            deadline,
+            limits.optimum_nodes,
+            progress,
+        )?;
         report.budget_seconds = limits.optimum_seconds;
         report
     };
@@ -386,8 +399,15 @@ pub fn optimum(
     let lower = lower_bounds(vis, start, None, deadline_in(seconds))?;
     let mut p = Problem::new(vis, start)?;
     let g = greedy_on(&mut p)?;
-    let mut report =
-        optimum::solve(&mut p, lower.views, Some(&g), solver, deadline_in(seconds), &mut |_| {})?;
+    let mut report = optimum::solve(
+        &mut p,
+        lower.views,
+        Some(&g),
+        solver,
+        deadline_in(seconds),
+        None,
+        &mut |_| {},
+    )?;
     report.budget_seconds = seconds;
     Ok(report)
 }

@@ -160,6 +160,7 @@ pub(super) fn solve(
     greedy: Option<&Greedy>,
     solver: Solver,
     deadline: Option<Instant>,
+    mut nodes: Option<u64>,
     progress: super::Progress,
 ) -> Result<OptimumReport, OfflineError> {
     let began = Instant::now();
@@ -210,7 +211,7 @@ pub(super) fn solve(
         let out: Vec<usize> = (0..dom.len()).filter(|&c| dom[c].is_some()).collect();
         let model = Model { n: p.cands.len(), out: &out, covers: &covers, cuts: &cuts };
         let hint = warm.as_deref().map(|w| undominated(w, &dom));
-        let chosen = match run_solver(solver, &model, hint.as_deref(), deadline)? {
+        let chosen = match run_solver(solver, &model, hint.as_deref(), deadline, &mut nodes)? {
             Solved::Optimal(chosen) => {
                 report.lower = report.lower.max(chosen.len());
                 chosen
@@ -219,7 +220,11 @@ pub(super) fn solve(
                 if let Some(b) = bound {
                     report.lower = report.lower.max((b - 1e-6).ceil().max(1.0) as usize);
                 }
-                break "the time budget ran out".to_string();
+                break if nodes == Some(0) {
+                    "the node budget ran out".to_string()
+                } else {
+                    "the time budget ran out".to_string()
+                };
             }
         };
         // Both checks at once: cuts where the set falls apart, witnesses where it leaves a
@@ -553,14 +558,17 @@ fn fractional_separators(
     cuts
 }
 
+/// Runs one program; `nodes`, when set, is the branch-and-bound nodes left (microlp only: a
+/// deterministic budget), and is charged with the nodes used.
 fn run_solver(
     solver: Solver,
     m: &Model,
     warm: Option<&[usize]>,
     deadline: Option<Instant>,
+    nodes: &mut Option<u64>,
 ) -> Result<Solved, OfflineError> {
     match solver {
-        Solver::Microlp => solve_microlp(m, warm, deadline),
+        Solver::Microlp => solve_microlp(m, warm, deadline, nodes),
         #[cfg(feature = "cbc")]
         Solver::Cbc => solve_good_lp(
             m,
@@ -627,11 +635,13 @@ fn solve_microlp(
     m: &Model,
     warm: Option<&[usize]>,
     deadline: Option<Instant>,
+    nodes: &mut Option<u64>,
 ) -> Result<Solved, OfflineError> {
     use microlp::{SolveOptions, SolveOutcome};
     let (p, x) = microlp_model(m, true);
     let mut opts = SolveOptions::default();
     opts.time_limit = remaining(deadline);
+    opts.node_limit = *nodes;
     opts.warm_start = warm.map(|w| {
         let mut v: Vec<(microlp::Variable, f64)> = x.iter().map(|&xi| (xi, 0.0)).collect();
         for &c in w {
@@ -642,7 +652,11 @@ fn solve_microlp(
     let chosen = |s: &microlp::Solution| -> Vec<usize> {
         (0..m.n).filter(|&c| s.var_value(x[c]) > 0.5).collect()
     };
-    match p.solve_with(opts) {
+    let outcome = p.solve_with(opts);
+    if let (Some(left), Ok(o)) = (nodes.as_mut(), &outcome) {
+        *left = left.saturating_sub(o.stats().nodes_solved);
+    }
+    match outcome {
         Ok(SolveOutcome::Solution(s)) => {
             if s.termination_reason() == microlp::TerminationReason::ProvenOptimal {
                 Ok(Solved::Optimal(chosen(&s)))
