@@ -28,6 +28,17 @@ fn temp(name: &str) -> PathBuf {
     dir
 }
 
+/// No temporary file (`*.tmp`, `*.json.tmp`, …) is left in `dir`.
+fn assert_no_temporary_files(dir: &std::path::Path) {
+    let leftovers: Vec<_> = std::fs::read_dir(dir)
+        .unwrap()
+        .flatten()
+        .map(|e| e.file_name().to_string_lossy().into_owned())
+        .filter(|n| n.contains(".tmp"))
+        .collect();
+    assert!(leftovers.is_empty(), "temporary files left: {leftovers:?}");
+}
+
 #[test]
 fn main_job_explores_the_office_and_writes_the_run_record() {
     let dir = temp("main");
@@ -810,12 +821,7 @@ fn roi_mission_survives_kill_and_resume() {
         "the resumed trace differs from the uninterrupted one: events lost or repeated"
     );
     assert!(steps(&state) > at_kill);
-    let leftovers: Vec<_> = std::fs::read_dir(&dir)
-        .unwrap()
-        .flatten()
-        .filter(|e| e.file_name().to_string_lossy().ends_with(".tmp"))
-        .collect();
-    assert!(leftovers.is_empty(), "temporary files left: {leftovers:?}");
+    assert_no_temporary_files(&dir);
 }
 
 /// With the default interval the state is written at most once a second and at the end; a
@@ -1113,13 +1119,7 @@ fn outputs_are_checked_first_and_written_atomically() {
     assert!(stopscan(&["corner", "thresholds", "--out", ab.to_str().unwrap()]).status.success());
     assert!(ab.exists());
     fails(&["map", "import", "x.wkt", "-o", "y.geojson", "--out", "z"], &["--out is not used"]);
-    let leftovers: Vec<_> = std::fs::read_dir(&dir)
-        .unwrap()
-        .flatten()
-        .map(|e| e.file_name().to_string_lossy().into_owned())
-        .filter(|n| n.contains(".tmp"))
-        .collect();
-    assert!(leftovers.is_empty(), "temporary files left: {leftovers:?}");
+    assert_no_temporary_files(&dir);
 }
 
 /// `corner demo` writes corner-demo.json beside the main job's run.json, not over it.
