@@ -4,15 +4,46 @@
 
 use serde::{Deserialize, Serialize};
 
-use super::{Agent, Flow, NoObserver, Observer, Recording, SimError, Team};
+use super::{Agent, Arena, Flow, Leg, NoObserver, Observer, Recording, SimError, Team};
 use crate::protocol::grid::{
-    Cell, CellMap, GridContext, GridObservation, Marks, Record, sorted_map,
+    Cell, CellMap, GridContext, GridObservation, Marks, Record, SIDES, sorted_map,
 };
 use crate::protocol::{Action, CostModel};
 use crate::strategy::grid::{
     Battery, GridFeedback, GridStrategy, LawnMower, MissionRobot, RecursiveDfs,
 };
 use crate::world::grid::GridWorld;
+
+/// A grid world as the loop sees it: moves priced by the drift, scans by its sensor, the
+/// records on the cells as the robots' only medium besides meeting.
+impl Arena for GridWorld {
+    type Place = Cell;
+    type Observation = GridObservation;
+    type Context = GridContext;
+    type Note = Record;
+
+    fn travel(&self, from: &Cell, to: &Cell, _clock: f64, cost: &CostModel) -> Option<Leg> {
+        let step = [to[0] - from[0], to[1] - from[1]];
+        let seconds = match SIDES.iter().position(|&d| d == step) {
+            // One cell: the four unit times, computed once per robot speed.
+            Some(i) => self.unit_seconds(cost)[i]?,
+            None => self.time_model(cost).seconds(*from, *to)?,
+        };
+        Some(Leg { metres: seconds * cost.speed, seconds })
+    }
+
+    fn scan(&mut self, robot: usize, at: &Cell, clock: f64) -> Option<GridObservation> {
+        Some(GridObservation { cell: *at, frames: self.sense(robot, *at, clock) })
+    }
+
+    fn meet(&mut self, at: &Cell, _clock: f64, group: &[usize]) -> GridContext {
+        self.arrive(*at, group)
+    }
+
+    fn leave(&mut self, at: &Cell, note: Record) {
+        self.write(*at, note);
+    }
+}
 
 impl<S: GridStrategy> Agent<GridWorld> for S {
     fn name(&self) -> &str {

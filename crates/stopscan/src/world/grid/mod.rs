@@ -11,11 +11,9 @@ use serde::{Deserialize, Serialize};
 use crate::geometry::{Domain, signed_area_of};
 use crate::kernel::Point;
 use crate::protocol::grid::{
-    Cell, CellMap, CellSet, Frame, GridContext, GridObservation, NeighbourState, Record,
-    VertexState, neighbour,
+    Cell, CellMap, CellSet, Frame, GridContext, NeighbourState, Record, VertexState, neighbour,
 };
 use crate::protocol::{CostModel, grid::TimeModel};
-use crate::sim::{Arena, Leg};
 
 /// Bit `k` of a bitmap.
 fn bit(bits: &[u64], k: usize) -> bool {
@@ -714,56 +712,45 @@ impl GridWorld {
         }
         f
     }
-}
 
-impl Arena for GridWorld {
-    type Place = Cell;
-    type Observation = GridObservation;
-    type Context = GridContext;
-    type Note = Record;
-
-    fn travel(&self, from: &Cell, to: &Cell, _clock: f64, cost: &CostModel) -> Option<Leg> {
+    /// The seconds of a one-cell move towards each side (`None` where the drift makes it
+    /// impossible), computed once per robot speed: the team loop prices a move at every step.
+    pub(crate) fn unit_seconds(&self, cost: &CostModel) -> [Option<f64>; 4] {
         let tm = self.time_model(cost);
-        let step = [to[0] - from[0], to[1] - from[1]];
-        let seconds = match crate::protocol::grid::SIDES.iter().position(|&d| d == step) {
-            // One cell: the four unit times, computed once per robot speed.
-            Some(i) => {
-                let cached = self.unit_times.get().filter(|c| c.0 == cost.speed);
-                let t = if let Some((_, t)) = cached {
-                    t
-                } else {
-                    let t = std::array::from_fn(|k| {
-                        tm.seconds([0, 0], crate::protocol::grid::SIDES[k])
-                    });
-                    self.unit_times.set(Some((cost.speed, t)));
-                    t
-                };
-                t[i]?
-            }
-            None => tm.seconds(*from, *to)?,
-        };
-        Some(Leg { metres: seconds * cost.speed, seconds })
+        let cached = self.unit_times.get().filter(|c| c.0 == cost.speed);
+        if let Some((_, t)) = cached {
+            t
+        } else {
+            let t = std::array::from_fn(|k| tm.seconds([0, 0], crate::protocol::grid::SIDES[k]));
+            self.unit_times.set(Some((cost.speed, t)));
+            t
+        }
     }
 
-    fn scan(&mut self, robot: usize, at: &Cell, clock: f64) -> Option<GridObservation> {
-        let frames = match &self.sensor {
-            GridSensor::Ideal => vec![self.truth_frame(*at)],
-            GridSensor::Camera(model) => model.frames(&self.roi, *at, self.seed, robot, clock),
-        };
-        Some(GridObservation { cell: *at, frames })
+    /// What the sensor of robot `robot` returns over cell `at` at time `clock`: the exact
+    /// frame, or the camera's frames.
+    pub(crate) fn sense(&self, robot: usize, at: Cell, clock: f64) -> Vec<Frame> {
+        match &self.sensor {
+            GridSensor::Ideal => vec![self.truth_frame(at)],
+            GridSensor::Camera(model) => model.frames(&self.roi, at, self.seed, robot, clock),
+        }
     }
 
-    fn meet(&mut self, at: &Cell, _clock: f64, group: &[usize]) -> GridContext {
+    /// Robots `group` stand on `at`: the cell counts as visited, and they read its record and
+    /// what the four neighbouring cells' records say of the tree.
+    pub(crate) fn arrive(&mut self, at: Cell, group: &[usize]) -> GridContext {
         let present = group.to_vec();
-        self.mark_visited(*at);
-        let record = self.boards.get(*at);
-        let neighbours = std::array::from_fn(|i| self.boards.tree_state(neighbour(*at, i)));
+        self.mark_visited(at);
+        let record = self.boards.get(at);
+        let neighbours = std::array::from_fn(|i| self.boards.tree_state(neighbour(at, i)));
         GridContext { record, neighbours, present }
     }
 
-    fn leave(&mut self, at: &Cell, note: Record) {
+    /// A robot merges `note` into the record on `at`; the children a first scan lists join
+    /// the tree.
+    pub(crate) fn write(&mut self, at: Cell, note: Record) {
         let mut listed = false;
-        self.boards.update(*at, |record| {
+        self.boards.update(at, |record| {
             listed = note.scanned && !record.scanned;
             record.merge(&note);
         });
@@ -773,7 +760,7 @@ impl Arena for GridWorld {
             for c in note.children.iter().flatten() {
                 self.boards.update(*c, |r| {
                     if r.parent.is_none() && !r.root {
-                        r.parent = Some(*at);
+                        r.parent = Some(at);
                     }
                 });
             }
