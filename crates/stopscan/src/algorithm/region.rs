@@ -1,5 +1,6 @@
 //! Regions for coverage bookkeeping: union, difference, intersection and area of many
-//! polygons, by i_overlay.
+//! polygons, by i_overlay; and the clipping of one ring to a box ([`clip_to_box`],
+//! Sutherland–Hodgman).
 //!
 //! i_overlay snaps coordinates to an integer grid over the operands' bounding box (31 bits a
 //! side), so results are exact up to about 5e-10 of the extent; areas carry that relative
@@ -119,6 +120,44 @@ impl Region {
     }
 }
 
+/// Sutherland–Hodgman clipping of a ring against an axis-aligned box `[x0, y0, x1, y1]`:
+/// the part of the ring's polygon inside the box, as one ring (empty, or fewer than three
+/// points, when nothing is left). The result of a non-convex ring may have zero-width
+/// bridges, which do not change its area; the grid family measures cell–polygon overlaps
+/// with it (no overlay needed against one square).
+///
+/// # Complexity
+/// O(n) time and space for a ring of n points (four passes, each adds at most one point per
+/// edge it cuts).
+pub fn clip_to_box(ring: &[Point], b: [f64; 4]) -> Vec<Point> {
+    let mut pts = ring.to_vec();
+    // (axis, bound, keep the side where the coordinate is >= bound?)
+    for (axis, bound, keep_ge) in
+        [(0, b[0], true), (0, b[2], false), (1, b[1], true), (1, b[3], false)]
+    {
+        if pts.is_empty() {
+            break;
+        }
+        let inside = |p: &Point| if keep_ge { p[axis] >= bound } else { p[axis] <= bound };
+        let mut out = Vec::with_capacity(pts.len() + 4);
+        for i in 0..pts.len() {
+            let (p, q) = (pts[i], pts[(i + 1) % pts.len()]);
+            let (ip, iq) = (inside(&p), inside(&q));
+            if ip {
+                out.push(p);
+            }
+            if ip != iq {
+                let t = (bound - p[axis]) / (q[axis] - p[axis]);
+                let mut m = [p[0] + t * (q[0] - p[0]), p[1] + t * (q[1] - p[1])];
+                m[axis] = bound;
+                out.push(m);
+            }
+        }
+        pts = out;
+    }
+    pts
+}
+
 /// Counter-clockwise copy (i_overlay's non-zero rule counts windings).
 fn oriented(ring: &[Point]) -> Vec<Point> {
     let mut r = ring.to_vec();
@@ -149,5 +188,29 @@ mod tests {
             Region::polygon(&sq(0.0, 0.0, 2.0)).intersection(&Region::polygon(&sq(1.0, 1.0, 2.0)));
         assert!((i.area() - 1.0).abs() < 1e-9);
         assert!(Region::union_all(&[]).is_empty());
+    }
+
+    #[test]
+    fn clipping_to_a_box_keeps_the_part_inside() {
+        let area = |r: &[Point]| crate::geometry::signed_area_of(r).abs();
+        // A square overlapping the box's corner: a quarter of it is inside.
+        let c = clip_to_box(&sq(-1.0, -1.0, 2.0), [0.0, 0.0, 4.0, 4.0]);
+        assert!((area(&c) - 1.0).abs() < 1e-12, "{c:?}");
+        // Wholly inside: unchanged; wholly outside: nothing left.
+        assert_eq!(clip_to_box(&sq(1.0, 1.0, 1.0), [0.0, 0.0, 4.0, 4.0]), sq(1.0, 1.0, 1.0));
+        assert!(clip_to_box(&sq(5.0, 5.0, 1.0), [0.0, 0.0, 4.0, 4.0]).len() < 3);
+        // A non-convex U whose arms both cross the box: the bridge between them has no area.
+        let u = vec![
+            [0.0, 0.0],
+            [3.0, 0.0],
+            [3.0, 3.0],
+            [2.0, 3.0],
+            [2.0, 1.0],
+            [1.0, 1.0],
+            [1.0, 3.0],
+            [0.0, 3.0],
+        ];
+        let c = clip_to_box(&u, [-1.0, 2.0, 4.0, 4.0]);
+        assert!((area(&c) - 2.0).abs() < 1e-12, "{c:?}");
     }
 }
