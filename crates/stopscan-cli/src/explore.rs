@@ -7,10 +7,10 @@ use anyhow::{Context, bail};
 use stopscan::experiment::polygon::{SweepInput, SweepRow};
 use stopscan::generate::{self, Instance};
 use stopscan::geometry::{Domain, Frame};
-use stopscan::io::run_record::RunRecord;
 use stopscan::kernel::{Num, Point};
 use stopscan::offline::polygon::ReferenceLimits;
 use stopscan::protocol::CostModel;
+use stopscan::run_record::RunRecord;
 use stopscan::sim::polygon::Reframe;
 use stopscan::world::polygon::PolygonWorld;
 

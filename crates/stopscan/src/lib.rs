@@ -43,6 +43,7 @@ pub mod kernel;
 pub mod offline;
 pub mod protocol;
 pub mod render;
+pub mod run_record;
 pub mod sim;
 pub mod strategy;
 pub mod world;

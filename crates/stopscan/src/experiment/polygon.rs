@@ -4,9 +4,9 @@
 use super::{ExperimentError, Reproduction, Row};
 use crate::algorithm::region::Region;
 use crate::generate::{spiral, star};
-use crate::io::run_record::RunRecord;
 use crate::offline::polygon::References;
 use crate::protocol::CostModel;
+use crate::run_record::RunRecord;
 use crate::sim::NoObserver;
 use crate::sim::polygon::{PolygonRun, run};
 use crate::strategy::polygon::{DepthFirst, Placement};

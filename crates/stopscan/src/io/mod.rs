@@ -4,7 +4,6 @@
 pub mod bench_format;
 pub mod grid;
 pub mod ros_map;
-pub mod run_record;
 pub mod text_formats;
 
 use crate::geometry::{Frame, InvalidEnvironment};

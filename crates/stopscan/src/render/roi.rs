@@ -5,8 +5,8 @@
 
 use std::fmt::Write;
 
-use crate::io::run_record::{GridRobotRecord, GridRunRecord};
 use crate::protocol::grid::Cell;
+use crate::run_record::{GridRobotRecord, GridRunRecord};
 use crate::world::grid::GridRoi;
 
 /// Above this many flown cells in all, flights are not drawn (the picture would be too big).

@@ -1,5 +1,11 @@
 //! The run record of DESIGN.md (`--out run.json`): one JSON object per run, whose field names
 //! are the contract.
+//!
+//! [`RunRecord`] records a polygon exploration with its certified bounds and offline
+//! references, [`GridRunRecord`] a grid mission with the ROI paper's bounds. Both are built
+//! from a finished run, its world and the offline results, so this module stands above
+//! [`sim`](crate::sim) and [`offline`](crate::offline); [`io`](crate::io), which only reads
+//! environments, stands below them.
 
 use serde::{Deserialize, Serialize};
 
