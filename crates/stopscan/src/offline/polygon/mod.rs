@@ -13,8 +13,9 @@
 //! - [`greedy`]: a valid viewpoint set, as an upper *reference* (not a bound): from the start,
 //!   repeatedly add the candidate seen from a chosen one that sees the most area not yet
 //!   covered;
-//! - [`optimum`]: the exact minimum over the same candidates by integer programming, within a
-//!   time budget (the best set found and the best proven lower bound when it runs out).
+//! - [`optimum`](mod@optimum): the exact minimum over the same candidates by integer
+//!   programming, within a time budget (the best set found and the best proven lower bound
+//!   when it runs out).
 //!
 //! **Candidates** are the start, every vertex of the domain (a guard on a vertex, seen in the
 //! closed free space; a robot stands a hair inside) and the centroid of every triangle of the
@@ -385,8 +386,9 @@ pub fn greedy(vis: &Visibility, start: Point) -> Result<ViewSet, OfflineError> {
     Ok(greedy_on(&mut Problem::new(vis, start)?)?.set)
 }
 
-/// The exact minimum over the candidates (see [`optimum`]) within `seconds`, with the greedy
-/// reference as the first incumbent and the geometric lower bounds as the first bound.
+/// The exact minimum over the candidates (see [`optimum`](mod@optimum)) within `seconds`, with
+/// the greedy reference as the first incumbent and the geometric lower bounds as the first
+/// bound.
 ///
 /// # Errors
 /// [`OfflineError`] if the start is outside the free space or the solver fails.
