@@ -1,4 +1,10 @@
 //! Sweeps, Monte Carlo and paper reproductions: seeded, parallel, deterministic.
+//!
+//! - [`corner`]: the corner and circle papers' tables and figures, and the corner demo;
+//! - [`polygon`]: the discrete-visibility paper's worst cases and the benchmark sweeps;
+//! - [`grid`]: Fig. 7 of the ROI paper;
+//! - here: [`reproduce`] by id ([`ids`]), [`Reproduction`] with its rows, and Monte Carlo
+//!   summaries.
 
 pub mod corner;
 pub mod grid;

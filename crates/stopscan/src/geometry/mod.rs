@@ -1,4 +1,9 @@
 //! Geometry with no robot concepts: the validated [`Domain`] (a polygon with holes).
+//!
+//! - `domain`: [`Domain`], validated once ([`InvalidEnvironment`]), and where a point lies
+//!   ([`Location`]);
+//! - `frame`: [`Frame`], the exact shift between the input's coordinates and the local frame;
+//! - here: [`signed_area_of`] and [`segment_distance`].
 
 mod domain;
 mod frame;

@@ -1,5 +1,11 @@
 //! Environment formats. Loaders check everything once, report the file, the place and the
 //! problem, and never panic.
+//!
+//! - [`text_formats`]: GeoJSON, WKT and `.pol` (and GeoJSON out);
+//! - [`ros_map`]: ROS `map_server` occupancy grids, traced into polygons;
+//! - [`bench_format`]: the visibility benchmark format;
+//! - [`grid`]: region-of-interest files (text grid, mask, polygon);
+//! - here: [`read_environment`] by file extension, [`Environment`], [`LoadError`].
 
 pub mod bench_format;
 pub mod grid;

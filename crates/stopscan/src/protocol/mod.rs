@@ -3,6 +3,12 @@
 //! Strategies are fed observations and answer with actions; they never see the ground
 //! truth. Everything here is serde-serialisable so that a real robot (or a log replay) can
 //! speak the same protocol as the simulator.
+//!
+//! - [`corner`]: the corner family's setup, stops, readings and beliefs
+//!   ([`corner::AngleDistribution`]);
+//! - [`polygon`]: what a scan returns ([`polygon::PolygonObservation`]);
+//! - [`grid`]: the ROI family's cells, frames, votes, records and time model;
+//! - here: [`CostModel`], [`Action`], [`Feedback`], [`Tally`].
 
 pub mod corner;
 pub mod grid;

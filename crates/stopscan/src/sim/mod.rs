@@ -1,5 +1,11 @@
 //! The stop-scan-plan-go loop. The simulator drives a strategy against a world, charges the
 //! [`CostModel`](crate::protocol::CostModel) and pushes events to observers, which listen.
+//!
+//! - `team`: [`Team`], the one loop, with the [`Arena`] and [`Agent`] traits;
+//! - [`polygon`]: one polygon robot in it ([`polygon::run`]);
+//! - [`grid`]: grid missions that resume ([`grid::Mission`]), on `GridWorld` as an [`Arena`];
+//! - [`corner`]: the corner Monte Carlo, with its own loop over hidden angles;
+//! - here: the [`Observer`] trait, [`Fanout`] and [`JsonLinesTrace`].
 
 pub mod corner;
 pub mod grid;

@@ -4,6 +4,10 @@
 //! answers queries by triangular expansion ([`expansion`]); [`sweep`] is an independent
 //! angular-sweep algorithm used to check it.
 //!
+//! - [`expansion`]: the triangular expansion, which answers queries;
+//! - [`range`]: the region clipped to a sensor's range, with exact arcs;
+//! - [`sweep`]: an independent angular sweep and a brute-force point test, for the tests.
+//!
 //! # Convention for queries on the boundary
 //! A point `p` is visible from `q` when the closed segment `qp` lies in the closed free space
 //! (the domain with its boundary). A ray may therefore graze a vertex or run along an edge.

@@ -1,5 +1,10 @@
 //! The corner papers' experiments: the four-strategy lineup, Monte Carlo through the real
-//! simulator, and the reproductions of their tables and figures (`tables`, `figures`).
+//! simulator, and the reproductions of their tables and figures.
+//!
+//! - `tables`: Tables II–IV of the corner paper, under one declared reading;
+//! - `figures`: Figs. 4, 6, 7 and 8 of the corner paper, Table 1 and Fig. 7 of the circle paper;
+//! - here: the [`lineup`], [`monte_carlo`] through the simulator, the [`demo`] and
+//!   [`reproduce`] by id.
 
 mod figures;
 mod tables;

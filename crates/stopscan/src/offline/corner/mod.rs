@@ -1,6 +1,9 @@
 //! Exact evaluation of corner strategies: worst-case competitive ratios by enumerating the
 //! breakpoints of the piecewise cost, expected times by integrating over θ exactly, and the
 //! global optimum over the plane ([`optimal`]).
+//!
+//! - here: [`worst_case`] and [`expected`];
+//! - [`optimal`]: the globally optimal scan points over the plane (the circle paper's §3.2).
 
 pub mod optimal;
 

@@ -5,6 +5,9 @@
 //! `xy` (the corner paper's Fig. 1): the stop at angle φ = ∠xyz lies at arc length `D·φ` from
 //! `x`, and a scan there sees the edge exactly when θ ≤ φ. The corner itself is φ = π/2 and
 //! sees every θ; edges with θ ≥ π/2 are seen only from the corner.
+//!
+//! - `distribution`: [`AngleDistribution`], beliefs and truths about θ with exact CDFs;
+//! - here: the setup, the stops and what a scan tells.
 
 mod distribution;
 

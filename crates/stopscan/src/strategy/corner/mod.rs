@@ -5,6 +5,11 @@
 //! stops) or "not yet", so until it sees the edge its trajectory is fixed in advance. The
 //! MDP policies therefore also become stop lists once solved, which is what makes their
 //! expected time exactly computable under any true distribution.
+//!
+//! - `stops`: [`StopList`], [`unirec`], [`exprec`] and [`StopListStrategy`], which drives a list;
+//! - [`circle`]: the circle strategy, its ratio c(d) and its thresholds;
+//! - [`mdp`]: MDP1 and MDP2, solved exactly;
+//! - [`registry`]: the strategies selectable by name.
 
 pub mod circle;
 pub mod mdp;

@@ -14,6 +14,10 @@
 //! Nobody has the whole tree: a robot carries only its path back to the root. With meetings
 //! alone, two robots in neighbouring branches would each explore the other's cells (branches
 //! touch wherever the region has a cycle) and the Lemma 1 bound would not hold.
+//!
+//! - `dfs`: [`RecursiveDfs`], Algorithm 1;
+//! - `search`: [`LawnMower`], the lawn-mowing search until the region is first seen;
+//! - `battery`: [`Battery`]: return, swap and resume.
 
 mod battery;
 mod dfs;

@@ -1,6 +1,14 @@
 //! Online exploration of unknown polygons with discrete visibility (Ghosh, Burdick,
 //! Bhattacharya, Sarkar). Strategies are fed only observations: scans with their labelled
 //! visibility regions.
+//!
+//! - `known`: what every polygon strategy knows (views, windows, the tree of moves) and the one
+//!   feedback loop they share;
+//! - `depth_first`: [`DepthFirst`], the paper's algorithm (at most r + 1 scans);
+//! - `range_limited`: [`RangeLimited`], the paper's algorithm with a range restriction
+//!   (Lemma 4);
+//! - `nearest_frontier`: [`NearestFrontier`], the nearest open window by travel;
+//! - `greedy_nbv`: [`GreedyNbv`], the most predicted area per second of cost.
 
 mod depth_first;
 mod greedy_nbv;
