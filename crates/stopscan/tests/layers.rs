@@ -378,7 +378,8 @@ fn declared_modules(lib: &str) -> Vec<String> {
 
 /// ARCHITECTURE.md's module graph: the code block under "## Module graph". A line that starts
 /// with a letter names a layer (its first word); a later line that starts with `└` lists the
-/// layers it imports directly, comma-separated (words in parentheses are remarks), or says
+/// layers it imports directly, comma-separated (a name may be followed by a remark in
+/// parentheses, without commas), or says
 /// `every layer below`. No such line: it imports none; `└ any layer`: not checked.
 fn architecture_graph(doc: &str) -> Vec<(String, Option<BTreeSet<String>>)> {
     let after = doc.split_once("## Module graph").expect("ARCHITECTURE.md has a module graph").1;
@@ -399,18 +400,13 @@ fn architecture_graph(doc: &str) -> Vec<(String, Option<BTreeSet<String>>)> {
                 *edges = Some(below);
                 continue;
             }
-            let mut plain = String::new();
-            let mut remark = 0;
-            for c in list.chars() {
-                match c {
-                    '(' => remark += 1,
-                    ')' => remark -= 1,
-                    _ if remark == 0 => plain.push(c),
-                    _ => {}
-                }
-            }
+            // A word in parentheses after a name is a remark: `generate (unit tests)`.
             let set = edges.as_mut().expect("one import list per layer");
-            set.extend(plain.split(',').map(|w| w.trim().to_string()).filter(|w| !w.is_empty()));
+            set.extend(
+                list.split(',')
+                    .map(|w| w.split('(').next().unwrap_or_default().trim().to_string())
+                    .filter(|w| !w.is_empty()),
+            );
         }
     }
     graph
