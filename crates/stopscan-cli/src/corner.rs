@@ -18,9 +18,7 @@ use stopscan::strategy::corner::{ExprecReading, StopList, circle, unirec_stops};
 
 use crate::cli::{self, CornerCommand, Global, RatioStrategy, Readings};
 use crate::limits;
-use crate::output::{
-    Table, emit, ensure_dir, num, write_atomic, write_json_atomic, write_stem_atomic,
-};
+use crate::output::{Table, emit, ensure_dir, num, write_atomic, write_json_atomic};
 
 pub(crate) fn run(command: &CornerCommand, g: &Global) -> anyhow::Result<()> {
     match command {
@@ -54,7 +52,7 @@ fn picture_dir(g: &Global) -> anyhow::Result<Option<PathBuf>> {
 }
 
 fn save_chart(dir: &Path, name: &str, chart: &LineChart) -> anyhow::Result<Vec<String>> {
-    Ok(write_stem_atomic(&dir.join(name), |stem| write_chart(chart, stem))?
+    Ok(stopscan::io::atomic::write_stem(&dir.join(name), |stem| write_chart(chart, stem))?
         .iter()
         .map(|p| p.display().to_string())
         .collect())
@@ -66,10 +64,12 @@ fn save_policy_image(
     title: &str,
     image: &[Vec<stopscan::strategy::corner::mdp::Cell>],
 ) -> anyhow::Result<Vec<String>> {
-    Ok(write_stem_atomic(&dir.join(name), |stem| write_policy_image(image, title, stem))?
-        .iter()
-        .map(|p| p.display().to_string())
-        .collect())
+    Ok(stopscan::io::atomic::write_stem(&dir.join(name), |stem| {
+        write_policy_image(image, title, stem)
+    })?
+    .iter()
+    .map(|p| p.display().to_string())
+    .collect())
 }
 
 /// Refuses (unless `--allow-large`) a UNIREC stop list above [`limits::STOPS`] before it is

@@ -1,6 +1,7 @@
 //! Environment formats. Loaders check everything once, report the file, the place and the
 //! problem, and never panic.
 
+pub mod atomic;
 pub mod bench_format;
 pub mod grid;
 pub mod ros_map;
