@@ -74,10 +74,7 @@ impl<O> stopscan::sim::Observer<Point, O> for Progress {
 }
 
 fn explore(j: &Job) -> anyhow::Result<Outcome> {
-    let Some(mut strat) = stopscan::strategy::polygon::by_name(j.strategy, &j.cost) else {
-        let names: Vec<&str> = stopscan::strategy::polygon::REGISTRY.iter().map(|r| r.0).collect();
-        bail!("unknown strategy {:?}; use one of: {}", j.strategy, names.join(", "));
-    };
+    let mut strat = stopscan::strategy::polygon::build(j.strategy, &j.cost)?;
     if let Some(r) = j.range
         && !(r.is_finite() && r > 0.0)
     {
@@ -269,7 +266,7 @@ fn sweep_dir(a: &ExploreArgs, g: &Global) -> anyhow::Result<()> {
     if files.is_empty() {
         bail!("{} holds no environment files (.geojson, .wkt, .pol, .yaml, .txt)", a.env.display());
     }
-    let all: Vec<&str> = stopscan::strategy::polygon::REGISTRY.iter().map(|r| r.0).collect();
+    let all: Vec<&str> = stopscan::strategy::polygon::REGISTRY.names().collect();
     let strategies: Vec<&str> = if a.strategy == "all" {
         all
     } else if all.contains(&a.strategy.as_str()) {

@@ -13,20 +13,10 @@ mod visibility;
 use std::io::Write;
 use std::process::ExitCode;
 
-use clap::{CommandFactory, FromArgMatches};
+use clap::FromArgMatches;
 
 fn main() -> ExitCode {
-    // The strategy registry writes the help of `--strategy`.
-    let command = cli::Cli::command().mut_subcommand("corner", |c| {
-        c.mut_subcommand("simulate", |s| {
-            s.mut_arg("strategy", |a| {
-                a.long_help(format!(
-                    "Strategies, comma-separated, or all:\n{}",
-                    stopscan::strategy::corner::registry::help()
-                ))
-            })
-        })
-    });
+    let command = cli::command();
     let args = match cli::Cli::from_arg_matches(&command.get_matches()) {
         Ok(a) => a,
         Err(e) => e.exit(),

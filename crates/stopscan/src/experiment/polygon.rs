@@ -164,7 +164,7 @@ fn views_benchmarks(data: &std::path::Path) -> Result<Reproduction, ExperimentEr
         let name = f.strip_prefix(data).unwrap_or(f).display().to_string();
         inputs.push((name, env.domain, start));
     }
-    let names: Vec<&str> = crate::strategy::polygon::REGISTRY.iter().map(|r| r.0).collect();
+    let names: Vec<&str> = crate::strategy::polygon::REGISTRY.names().collect();
     // A node budget, not a clock, bounds the optimum's search (with a generous clock as a
     // safety net), so that the reproduction prints the same on every machine.
     let limits = crate::offline::polygon::ReferenceLimits {
