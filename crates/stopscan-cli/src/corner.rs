@@ -8,10 +8,12 @@ use serde::Serialize;
 use serde_json::json;
 use stopscan::experiment::corner::{self as exp, LineupOptions};
 use stopscan::kernel::Num;
-use stopscan::offline::corner::{expected, limit_ratio, optimal::optimal_scans_with, worst_case};
+use stopscan::offline::corner::optimal::{MAX_SCANS, OptimalError, optimal_scans_with};
+use stopscan::offline::corner::{expected, limit_ratio, worst_case};
 use stopscan::protocol::CostModel;
 use stopscan::protocol::corner::{AngleDistribution, CornerSetup, LastStep, Route};
 use stopscan::render::{LineChart, Series, write_chart, write_policy_image};
+use stopscan::strategy::corner::circle::CircleError;
 use stopscan::strategy::corner::mdp::{CornerMdp, Memory, Reading};
 use stopscan::strategy::corner::registry;
 use stopscan::strategy::corner::{ExprecReading, StopList, circle, unirec_stops};
@@ -35,9 +37,22 @@ pub(crate) fn run(command: &CornerCommand, g: &Global) -> anyhow::Result<()> {
 
 fn positive(name: &str, v: f64) -> anyhow::Result<f64> {
     if !(v.is_finite() && v > 0.0) {
-        bail!("--{name} must be a finite positive number, got {}", Num(v));
+        return Err(positive_error(name, v));
     }
     Ok(v)
+}
+
+/// A circle-strategy error in the words of `--distance`.
+fn distance_error(e: CircleError) -> anyhow::Error {
+    match e {
+        CircleError::Distance(d) => positive_error("distance", d),
+        e => e.into(),
+    }
+}
+
+/// `--NAME must be a finite positive number, got V`.
+fn positive_error(name: &str, v: f64) -> anyhow::Error {
+    anyhow::anyhow!("--{name} must be a finite positive number, got {}", Num(v))
 }
 
 /// A directory for pictures from `--out`, or `None` when no pictures are wanted.
@@ -90,8 +105,7 @@ fn check_unirec(g: &Global, flag: &str, delta: f64) -> anyhow::Result<()> {
 }
 
 fn circle_cmd(d: f64, g: &Global) -> anyhow::Result<()> {
-    let d = positive("distance", d)?;
-    let s = circle::solve(d);
+    let s = circle::solve(d).map_err(distance_error)?;
     let mut files = Vec::new();
     if let Some(dir) = picture_dir(g)? {
         let mut path = vec![(0.0, 0.0)];
@@ -159,15 +173,18 @@ fn thresholds(count: usize, g: &Global) -> anyhow::Result<()> {
 }
 
 fn optimal(d: f64, k: usize, g: &Global) -> anyhow::Result<()> {
-    let d = positive("distance", d)?;
-    if k > 12 {
-        bail!("--scans must be at most 12 (the optimisation is over 2·scans coordinates), got {k}");
-    }
     let bar = crate::output::spinner();
     let o = optimal_scans_with(d, k, g.seed, &mut |j, r| {
         bar.set_message(format!("searched {j} of {k} points: best ratio {r:.6}"));
     });
     bar.finish_and_clear();
+    let o = o.map_err(|e| match e {
+        OptimalError::Distance(e) => distance_error(e),
+        OptimalError::TooManyScans(k) => anyhow::anyhow!(
+            "--scans must be at most {MAX_SCANS} (the optimisation is over 2·scans coordinates), got {k}"
+        ),
+        e => e.into(),
+    })?;
     let value = json!({
         "distance": o.distance, "max_scans": o.max_scans, "scans": o.scans, "ratio": o.ratio,
         "scan_points": o.scan_points, "ratio_by_scans": o.ratio_by_scans,

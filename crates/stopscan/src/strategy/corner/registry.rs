@@ -30,7 +30,9 @@ pub const REGISTRY: Registry<CornerBuild> = Registry::new(&[
     Entry {
         name: "circle",
         summary: "the circle paper's strategy at d = D/(vτ): chords with equalised ratio c(d) → 2",
-        build: |s, _, _| Ok(circle::solve(s.normalised_distance()).stop_list()),
+        build: |s, _, _| {
+            circle::solve(s.normalised_distance()).map(|c| c.stop_list()).map_err(|e| invalid(&e))
+        },
     },
     Entry {
         name: "policy1",
