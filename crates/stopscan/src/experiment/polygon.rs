@@ -158,9 +158,7 @@ fn views_benchmarks(data: &std::path::Path) -> Result<Reproduction, ExperimentEr
     }
     let mut inputs: Vec<SweepInput> = Vec::new();
     for f in &files {
-        let env = crate::io::read_environment(f).map_err(err)?;
-        let world = PolygonWorld::new(env.domain.clone()).map_err(err)?;
-        let start = env.queries.first().copied().unwrap_or_else(|| world.interior_point());
+        let (env, start) = crate::io::sweep::read_with_start(f).map_err(err)?;
         let name = f.strip_prefix(data).unwrap_or(f).display().to_string();
         inputs.push((name, env.domain, start));
     }

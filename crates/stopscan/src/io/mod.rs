@@ -6,6 +6,7 @@ pub mod bench_format;
 pub mod grid;
 pub mod ros_map;
 pub mod run_record;
+pub mod sweep;
 pub mod text_formats;
 
 use crate::geometry::{Frame, InvalidEnvironment};
