@@ -443,8 +443,12 @@ pub(super) fn circle_table_1() -> Reproduction {
     }
 }
 
+/// `c(d)`, as a reproduction's error.
+fn c_of(d: f64) -> Result<f64, ExperimentError> {
+    circle::ratio(d).map_err(model_err)
+}
+
 pub(super) fn circle_fig_7(seed: u64) -> Result<Reproduction, ExperimentError> {
-    let c_of = |d: f64| circle::ratio(d).map_err(model_err);
     let small = ratio_curve(10.0, 2000).map_err(model_err)?;
     let large = ratio_curve(100.0, 2000).map_err(model_err)?;
     // The maximum sits on a cusp (a threshold); refine around the sampled maximum.
