@@ -41,6 +41,7 @@ pub mod geometry;
 pub mod io;
 pub mod kernel;
 pub mod offline;
+pub mod pipeline;
 pub mod protocol;
 pub mod render;
 pub mod sim;
