@@ -91,6 +91,19 @@ pub(crate) fn count_at_least(min: usize) -> impl Fn(&str) -> Result<usize, Strin
     }
 }
 
+/// Parses a point `X,Y` (two finite numbers).
+pub(crate) fn parse_point(s: &str) -> anyhow::Result<stopscan::kernel::Point> {
+    let v: Vec<&str> = s.split(',').map(str::trim).collect();
+    if let [x, y] = v.as_slice()
+        && let (Ok(x), Ok(y)) = (x.parse::<f64>(), y.parse::<f64>())
+        && x.is_finite()
+        && y.is_finite()
+    {
+        return Ok([x, y]);
+    }
+    anyhow::bail!("expected X,Y with two finite numbers, got {s:?}")
+}
+
 #[derive(Debug, Clone, Copy, PartialEq, Eq, ValueEnum)]
 pub(crate) enum Format {
     /// Aligned text for people.

@@ -1,12 +1,21 @@
-//! `stopscan`: where to stop and scan. The binary parses arguments, calls the library and
-//! writes files and tables; all the work is in the `stopscan` crate.
+//! `stopscan`: where to stop and scan. The binary parses arguments, shows progress and prints
+//! tables; the work, the pipelines included, is in the `stopscan` crate
+//! (`stopscan::pipeline`).
+//!
+//! - `cli`: the command line (clap), with help texts from the library's registries;
+//! - one module per command: `explore` (and the main job), `generate`, `corner`, `reproduce`,
+//!   `visibility`, `map` (`map import`), `roi`, `bench`;
+//! - `output`: tables, JSON, the progress spinner and bars; `limits`: the soft size limits.
 
 mod bench;
 mod cli;
 mod corner;
 mod explore;
+mod generate;
 mod limits;
+mod map;
 mod output;
+mod reproduce;
 mod roi;
 mod visibility;
 
@@ -37,17 +46,10 @@ fn main() -> ExitCode {
     }
 }
 
-/// An error and its causes on one line, each cause once: library errors often repeat their
-/// source in their own message.
-pub(crate) fn error_chain(err: &anyhow::Error) -> String {
-    let mut msg = err.to_string();
-    for cause in err.chain().skip(1) {
-        let c = cause.to_string();
-        if !msg.contains(&c) {
-            msg = format!("{msg}: {c}");
-        }
-    }
-    msg
+/// An error and its causes on one line, each cause once ([`stopscan::pipeline::error_message`]).
+fn error_chain(err: &anyhow::Error) -> String {
+    let err: &(dyn std::error::Error + 'static) = err.as_ref();
+    stopscan::pipeline::error_message(err)
 }
 
 fn run(args: &cli::Cli) -> anyhow::Result<()> {
@@ -59,12 +61,12 @@ fn run(args: &cli::Cli) -> anyhow::Result<()> {
     match &args.command {
         None => explore::main_job(g),
         Some(cli::Command::Explore(a)) => explore::run(a, g),
-        Some(cli::Command::Generate(a)) => explore::generate(a, g),
+        Some(cli::Command::Generate(a)) => generate::run(a, g),
         Some(cli::Command::Corner { command }) => corner::run(command, g),
         Some(cli::Command::Visibility(v)) => visibility::run(v, g),
-        Some(cli::Command::Map { command: cli::MapCommand::Import(a) }) => visibility::import(a, g),
+        Some(cli::Command::Map { command: cli::MapCommand::Import(a) }) => map::import(a, g),
         Some(cli::Command::Roi(a)) => roi::run(a, g),
-        Some(cli::Command::Reproduce(r)) => corner::reproduce(r, g),
+        Some(cli::Command::Reproduce(r)) => reproduce::run(r, g),
         Some(cli::Command::Bench(b)) => bench::run(b, g),
     }
 }
@@ -74,8 +76,10 @@ fn run(args: &cli::Cli) -> anyhow::Result<()> {
 /// (one level) now. `roi --resume` checks the outputs its state names once it has read it.
 fn check_targets(args: &cli::Cli) -> anyhow::Result<()> {
     use cli::{Command, CornerCommand};
-    use output::{check_file, ensure_dir};
     use std::path::{Path, PathBuf};
+    use stopscan::io::atomic;
+    let check_file = |p: &Path| -> anyhow::Result<()> { Ok(atomic::check_file(p)?) };
+    let ensure_dir = |p: &Path| -> anyhow::Result<()> { Ok(atomic::ensure_dir(p)?) };
     let g = &args.global;
     let out = g.out.as_deref();
     let file = |p: Option<&Path>| p.map_or(Ok(()), check_file);

@@ -1,7 +1,6 @@
-//! Writing results: aligned tables for people, JSON for programs, files written atomically.
+//! Writing results: aligned tables for people, JSON for programs, and the progress display.
 
 use std::io::Write;
-use std::path::Path;
 
 use serde::Serialize;
 
@@ -54,16 +53,32 @@ impl Table {
     }
 }
 
-/// A spinner showing a message and the elapsed time on a terminal (hidden otherwise); it
-/// ticks by itself, so it moves while a long computation runs.
-pub(crate) fn spinner() -> indicatif::ProgressBar {
-    let bar = indicatif::ProgressBar::new_spinner();
-    bar.set_style(
-        indicatif::ProgressStyle::with_template("{spinner} {msg} {elapsed}")
-            .unwrap_or_else(|_| indicatif::ProgressStyle::default_spinner()),
-    );
-    bar.enable_steady_tick(std::time::Duration::from_millis(200));
-    bar
+/// The progress spinner: the library's progress lines and the elapsed time, on a terminal
+/// only (hidden otherwise, as indicatif does). It ticks by itself, so it moves while a long
+/// computation runs, and it is cleared when dropped, on success and error alike.
+pub(crate) struct Spinner(indicatif::ProgressBar);
+
+impl Spinner {
+    pub(crate) fn new() -> Self {
+        let bar = indicatif::ProgressBar::new_spinner();
+        bar.set_style(
+            indicatif::ProgressStyle::with_template("{spinner} {msg} {elapsed}")
+                .unwrap_or_else(|_| indicatif::ProgressStyle::default_spinner()),
+        );
+        bar.enable_steady_tick(std::time::Duration::from_millis(200));
+        Self(bar)
+    }
+
+    /// Shows one progress line (a library `Progress` callback calls this).
+    pub(crate) fn show(&self, line: &str) {
+        self.0.set_message(line.to_string());
+    }
+}
+
+impl Drop for Spinner {
+    fn drop(&mut self) {
+        self.0.finish_and_clear();
+    }
 }
 
 /// A progress bar of `len` units with the elapsed time and an estimate of the time left, on
@@ -96,28 +111,14 @@ pub(crate) fn num(v: Option<f64>, digits: usize) -> String {
     }
 }
 
-/// Writes `value` as pretty JSON to `path` atomically ([`write_atomic`]).
-pub(crate) fn write_json_atomic<T: Serialize>(path: &Path, value: &T) -> anyhow::Result<()> {
-    Ok(stopscan::io::atomic::write_json(path, value)?)
+/// A library parameter error in the words of the command line: `--NAME must …`.
+pub(crate) fn flag_error(p: &stopscan::pipeline::InvalidParameter) -> anyhow::Error {
+    anyhow::anyhow!("--{} must {}, got {}", p.name.replace('_', "-"), p.requirement, p.value)
 }
 
-/// Writes a file atomically (through a temporary sibling renamed over it): the library's
-/// [`stopscan::io::atomic::write`].
-pub(crate) fn write_atomic(
-    path: &Path,
-    write: impl FnOnce(&mut dyn Write) -> std::io::Result<()>,
-) -> anyhow::Result<()> {
-    Ok(stopscan::io::atomic::write(path, write)?)
-}
-
-/// A file output can be written: its directory exists and it is not a directory.
-pub(crate) fn check_file(path: &Path) -> anyhow::Result<()> {
-    Ok(stopscan::io::atomic::check_file(path)?)
-}
-
-/// A directory output: created (one level) if missing.
-pub(crate) fn ensure_dir(path: &Path) -> anyhow::Result<()> {
-    Ok(stopscan::io::atomic::ensure_dir(path)?)
+/// `x` when it is finite: a table prints `-` where the JSON has `null`.
+pub(crate) fn finite(x: f64) -> Option<f64> {
+    x.is_finite().then_some(x)
 }
 
 /// Prints a result as JSON or as a table, and writes the JSON to `--out` for commands whose
@@ -136,7 +137,7 @@ pub(crate) fn emit<T: Serialize>(
     }
     w.flush()?;
     if out_is_file && let Some(path) = &g.out {
-        write_json_atomic(path, value)?;
+        stopscan::io::atomic::write_json(path, value)?;
     }
     Ok(())
 }
