@@ -2,42 +2,7 @@
 
 use std::path::PathBuf;
 
-use clap::{Args, CommandFactory, Parser, Subcommand, ValueEnum};
-
-/// The command line, with the help texts that come from the library: each family's strategy
-/// registry and the reproduction IDs.
-pub(crate) fn command() -> clap::Command {
-    use stopscan::strategy::{corner, polygon};
-    let polygon_names: Vec<&str> = polygon::REGISTRY.names().collect();
-    Cli::command()
-        .mut_subcommand("corner", |c| {
-            c.mut_subcommand("simulate", |s| {
-                s.mut_arg("strategy", |a| {
-                    a.long_help(format!(
-                        "Strategies, comma-separated, or all:\n{}",
-                        corner::registry::help()
-                    ))
-                })
-            })
-        })
-        .mut_subcommand("explore", |c| {
-            c.mut_arg("strategy", |a| {
-                a.help(format!(
-                    "The strategy: {}; `all` in a sweep (see --help)",
-                    polygon_names.join(", ")
-                ))
-                .long_help(format!(
-                    "The strategy, or `all` in a sweep (a folder given to --env):\n{}",
-                    polygon::REGISTRY.help()
-                ))
-            })
-        })
-        .mut_subcommand("reproduce", |c| {
-            c.mut_arg("id", |a| {
-                a.help(format!("{}, or all", stopscan::experiment::ids().join(", ")))
-            })
-        })
-}
+use clap::{Args, Parser, Subcommand, ValueEnum};
 
 /// Where a robot should stop and scan when every scan costs time.
 ///
@@ -344,7 +309,7 @@ pub(crate) struct ExploreArgs {
     /// or a folder of them: a sweep in parallel that writes CSV (to --out, default sweep.csv).
     #[arg(long)]
     pub(crate) env: PathBuf,
-    /// The strategy (the help lists the polygon registry: [`command`]).
+    /// The strategy (the help lists the polygon registry: `main::command`).
     #[arg(long, default_value = "depth_first")]
     pub(crate) strategy: String,
     /// The start "X,Y" (default: the file's start, its first query point, or a point inside the
@@ -552,7 +517,7 @@ pub(crate) struct VisibilityArgs {
 
 #[derive(Debug, Args)]
 pub(crate) struct ReproduceArgs {
-    /// The reproduction, or all (the help lists `experiment::ids()`: [`command`]).
+    /// The reproduction, or all (the help lists `experiment::ids()`: `main::command`).
     pub(crate) id: String,
     /// Monte Carlo samples where the paper used sampling (roi-fig-7: trials per point, at
     /// most the paper's 100; soft limit 10^7).

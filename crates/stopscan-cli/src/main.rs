@@ -22,10 +22,10 @@ mod visibility;
 use std::io::Write;
 use std::process::ExitCode;
 
-use clap::FromArgMatches;
+use clap::{CommandFactory, FromArgMatches};
 
 fn main() -> ExitCode {
-    let command = cli::command();
+    let command = command();
     let args = match cli::Cli::from_arg_matches(&command.get_matches()) {
         Ok(a) => a,
         Err(e) => e.exit(),
@@ -44,6 +44,41 @@ fn main() -> ExitCode {
             ExitCode::from(2)
         }
     }
+}
+
+/// The command line, with the help texts that come from the library: each family's strategy
+/// registry and the reproduction IDs.
+fn command() -> clap::Command {
+    use stopscan::strategy::{corner, polygon};
+    let polygon_names: Vec<&str> = polygon::REGISTRY.names().collect();
+    cli::Cli::command()
+        .mut_subcommand("corner", |c| {
+            c.mut_subcommand("simulate", |s| {
+                s.mut_arg("strategy", |a| {
+                    a.long_help(format!(
+                        "Strategies, comma-separated, or all:\n{}",
+                        corner::registry::help()
+                    ))
+                })
+            })
+        })
+        .mut_subcommand("explore", |c| {
+            c.mut_arg("strategy", |a| {
+                a.help(format!(
+                    "The strategy: {}; `all` in a sweep (see --help)",
+                    polygon_names.join(", ")
+                ))
+                .long_help(format!(
+                    "The strategy, or `all` in a sweep (a folder given to --env):\n{}",
+                    polygon::REGISTRY.help()
+                ))
+            })
+        })
+        .mut_subcommand("reproduce", |c| {
+            c.mut_arg("id", |a| {
+                a.help(format!("{}, or all", stopscan::experiment::ids().join(", ")))
+            })
+        })
 }
 
 /// An error and its causes on one line, each cause once ([`stopscan::pipeline::error_message`]).
