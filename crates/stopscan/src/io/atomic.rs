@@ -166,18 +166,18 @@ pub fn write(
     Ok(())
 }
 
-/// Writes `bytes` to `path` atomically ([`write`]).
+/// Writes `bytes` to `path` atomically ([`write()`]).
 ///
 /// # Errors
-/// As [`write`].
+/// As [`write()`].
 pub fn write_bytes(path: &Path, bytes: &[u8]) -> Result<(), WriteError> {
     write(path, |w| w.write_all(bytes))
 }
 
-/// Writes `value` as pretty JSON, with a final newline, to `path` atomically ([`write`]).
+/// Writes `value` as pretty JSON, with a final newline, to `path` atomically ([`write()`]).
 ///
 /// # Errors
-/// As [`write`]; a value that does not serialise is an I/O error.
+/// As [`write()`]; a value that does not serialise is an I/O error.
 pub fn write_json<T: serde::Serialize + ?Sized>(path: &Path, value: &T) -> Result<(), WriteError> {
     write(path, |w| {
         serde_json::to_writer_pretty(&mut *w, value)?;
