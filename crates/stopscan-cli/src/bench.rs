@@ -95,7 +95,9 @@ pub(crate) fn run(a: &BenchArgs, g: &Global) -> anyhow::Result<()> {
             (
                 "circle-ratio",
                 n,
-                time(a.repeat, || ds.iter().map(|&d| circle::ratio(d)).sum::<f64>()),
+                time(a.repeat, || {
+                    ds.iter().map(|&d| circle::ratio(d).unwrap_or(f64::NAN)).sum::<f64>()
+                }),
                 n as f64,
             )
         }

@@ -56,6 +56,19 @@ pub(crate) fn count_at_least(min: usize) -> impl Fn(&str) -> Result<usize, Strin
     }
 }
 
+/// Parses a point `X,Y` (two finite numbers).
+pub(crate) fn parse_point(s: &str) -> anyhow::Result<stopscan::kernel::Point> {
+    let v: Vec<&str> = s.split(',').map(str::trim).collect();
+    if let [x, y] = v.as_slice()
+        && let (Ok(x), Ok(y)) = (x.parse::<f64>(), y.parse::<f64>())
+        && x.is_finite()
+        && y.is_finite()
+    {
+        return Ok([x, y]);
+    }
+    anyhow::bail!("expected X,Y with two finite numbers, got {s:?}")
+}
+
 #[derive(Debug, Clone, Copy, PartialEq, Eq, ValueEnum)]
 pub(crate) enum Format {
     /// Aligned text for people.
@@ -296,10 +309,7 @@ pub(crate) struct ExploreArgs {
     /// or a folder of them: a sweep in parallel that writes CSV (to --out, default sweep.csv).
     #[arg(long)]
     pub(crate) env: PathBuf,
-    /// The strategy: depth_first (the paper's algorithm, at most r + 1 scans), range_limited
-    /// (the paper's algorithm for a sensor range; needs --range), nearest_frontier
-    /// (Yamauchi-style frontiers, windows as frontiers) or greedy_nbv (most predicted new area
-    /// per second of cost); `all` in a sweep.
+    /// The strategy (the help lists the polygon registry: `main::command`).
     #[arg(long, default_value = "depth_first")]
     pub(crate) strategy: String,
     /// The start "X,Y" (default: the file's start, its first query point, or a point inside the
@@ -507,9 +517,7 @@ pub(crate) struct VisibilityArgs {
 
 #[derive(Debug, Args)]
 pub(crate) struct ReproduceArgs {
-    /// corner-table-2, corner-table-3, corner-table-4, corner-fig-4, corner-fig-6,
-    /// corner-fig-7, corner-fig-8, circle-table-1, circle-fig-7, views-spiral, views-star,
-    /// views-benchmarks, roi-fig-7, or all.
+    /// The reproduction, or all (the help lists `experiment::ids()`: `main::command`).
     pub(crate) id: String,
     /// Monte Carlo samples where the paper used sampling (roi-fig-7: trials per point, at
     /// most the paper's 100; soft limit 10^7).

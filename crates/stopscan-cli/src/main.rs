@@ -1,12 +1,21 @@
-//! `stopscan`: where to stop and scan. The binary parses arguments, calls the library and
-//! writes files and tables; all the work is in the `stopscan` crate.
+//! `stopscan`: where to stop and scan. The binary parses arguments, shows progress and prints
+//! tables; the work, the pipelines included, is in the `stopscan` crate
+//! (`stopscan::pipeline`).
+//!
+//! - `cli`: the command line (clap), with help texts from the library's registries;
+//! - one module per command: `explore` (and the main job), `generate`, `corner`, `reproduce`,
+//!   `visibility`, `map` (`map import`), `roi`, `bench`;
+//! - `output`: tables, JSON, the progress spinner and bars; `limits`: the soft size limits.
 
 mod bench;
 mod cli;
 mod corner;
 mod explore;
+mod generate;
 mod limits;
+mod map;
 mod output;
+mod reproduce;
 mod roi;
 mod visibility;
 
@@ -16,17 +25,7 @@ use std::process::ExitCode;
 use clap::{CommandFactory, FromArgMatches};
 
 fn main() -> ExitCode {
-    // The strategy registry writes the help of `--strategy`.
-    let command = cli::Cli::command().mut_subcommand("corner", |c| {
-        c.mut_subcommand("simulate", |s| {
-            s.mut_arg("strategy", |a| {
-                a.long_help(format!(
-                    "Strategies, comma-separated, or all:\n{}",
-                    stopscan::strategy::corner::registry::help()
-                ))
-            })
-        })
-    });
+    let command = command();
     let args = match cli::Cli::from_arg_matches(&command.get_matches()) {
         Ok(a) => a,
         Err(e) => e.exit(),
@@ -47,17 +46,45 @@ fn main() -> ExitCode {
     }
 }
 
-/// An error and its causes on one line, each cause once: library errors often repeat their
-/// source in their own message.
-pub(crate) fn error_chain(err: &anyhow::Error) -> String {
-    let mut msg = err.to_string();
-    for cause in err.chain().skip(1) {
-        let c = cause.to_string();
-        if !msg.contains(&c) {
-            msg = format!("{msg}: {c}");
-        }
-    }
-    msg
+/// The command line, with the help texts that come from the library: each family's strategy
+/// registry and the reproduction IDs.
+fn command() -> clap::Command {
+    use stopscan::strategy::{corner, polygon};
+    let polygon_names: Vec<&str> = polygon::REGISTRY.names().collect();
+    cli::Cli::command()
+        .mut_subcommand("corner", |c| {
+            c.mut_subcommand("simulate", |s| {
+                s.mut_arg("strategy", |a| {
+                    a.long_help(format!(
+                        "Strategies, comma-separated, or all:\n{}",
+                        corner::registry::help()
+                    ))
+                })
+            })
+        })
+        .mut_subcommand("explore", |c| {
+            c.mut_arg("strategy", |a| {
+                a.help(format!(
+                    "The strategy: {}; `all` in a sweep (see --help)",
+                    polygon_names.join(", ")
+                ))
+                .long_help(format!(
+                    "The strategy, or `all` in a sweep (a folder given to --env):\n{}",
+                    polygon::REGISTRY.help()
+                ))
+            })
+        })
+        .mut_subcommand("reproduce", |c| {
+            c.mut_arg("id", |a| {
+                a.help(format!("{}, or all", stopscan::experiment::ids().join(", ")))
+            })
+        })
+}
+
+/// An error and its causes on one line, each cause once ([`stopscan::pipeline::error_message`]).
+fn error_chain(err: &anyhow::Error) -> String {
+    let err: &(dyn std::error::Error + 'static) = err.as_ref();
+    stopscan::pipeline::error_message(err)
 }
 
 fn run(args: &cli::Cli) -> anyhow::Result<()> {
@@ -69,12 +96,12 @@ fn run(args: &cli::Cli) -> anyhow::Result<()> {
     match &args.command {
         None => explore::main_job(g),
         Some(cli::Command::Explore(a)) => explore::run(a, g),
-        Some(cli::Command::Generate(a)) => explore::generate(a, g),
+        Some(cli::Command::Generate(a)) => generate::run(a, g),
         Some(cli::Command::Corner { command }) => corner::run(command, g),
         Some(cli::Command::Visibility(v)) => visibility::run(v, g),
-        Some(cli::Command::Map { command: cli::MapCommand::Import(a) }) => visibility::import(a, g),
+        Some(cli::Command::Map { command: cli::MapCommand::Import(a) }) => map::import(a, g),
         Some(cli::Command::Roi(a)) => roi::run(a, g),
-        Some(cli::Command::Reproduce(r)) => corner::reproduce(r, g),
+        Some(cli::Command::Reproduce(r)) => reproduce::run(r, g),
         Some(cli::Command::Bench(b)) => bench::run(b, g),
     }
 }
@@ -84,8 +111,10 @@ fn run(args: &cli::Cli) -> anyhow::Result<()> {
 /// (one level) now. `roi --resume` checks the outputs its state names once it has read it.
 fn check_targets(args: &cli::Cli) -> anyhow::Result<()> {
     use cli::{Command, CornerCommand};
-    use output::{check_file, ensure_dir};
     use std::path::{Path, PathBuf};
+    use stopscan::io::atomic;
+    let check_file = |p: &Path| -> anyhow::Result<()> { Ok(atomic::check_file(p)?) };
+    let ensure_dir = |p: &Path| -> anyhow::Result<()> { Ok(atomic::ensure_dir(p)?) };
     let g = &args.global;
     let out = g.out.as_deref();
     let file = |p: Option<&Path>| p.map_or(Ok(()), check_file);

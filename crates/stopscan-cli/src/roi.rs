@@ -1,61 +1,27 @@
 //! `stopscan roi`: a team of robots explores a region of interest (Algorithm 1 of the ROI
 //! paper), optionally with the field pipeline (camera, lawn-mowing search, battery), writing
-//! the mission state as it goes so that `--resume` carries on after a crash.
+//! the mission state as it goes so that `--resume` carries on after a crash. The mission, its
+//! state file and its loop are the library's ([`stopscan::pipeline::mission`]); this module
+//! checks the arguments and the soft limits and prints the summary.
 
 use std::io::Write;
-use std::path::{Path, PathBuf};
+use std::path::PathBuf;
+use std::time::Duration;
 
 use anyhow::{Context, bail};
-use serde::{Deserialize, Serialize};
-use stopscan::io::grid::GridOptions;
 use stopscan::kernel::Num;
+use stopscan::pipeline::mission::{MissionRun, MissionSpec, MissionState, RegionSource};
 use stopscan::protocol::CostModel;
 use stopscan::protocol::grid::Cell;
 use stopscan::run_record::GridRunRecord;
-use stopscan::sim::grid::{MAX_FRAMES, Mission, MissionPlan, Search};
-use stopscan::sim::{Flow, NoObserver, Recording};
+use stopscan::sim::Recording;
+use stopscan::sim::grid::{MAX_FRAMES, Search};
 use stopscan::world::grid::camera::CameraModel;
-use stopscan::world::grid::{Drift, GridRoi, GridSensor, GridWorld};
+use stopscan::world::grid::{Drift, GridSensor};
 
 use crate::cli::{Format, Global, RoiArgs};
 use crate::limits;
-use crate::output::{Table, check_file, num, write_atomic, write_json_atomic};
-
-/// Where the region comes from, so that a resumed mission rebuilds the same world.
-#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
-#[serde(tag = "kind", rename_all = "snake_case")]
-enum Source {
-    /// `GridRoi::random(cells, seed)` with cells of `cell_size` metres.
-    Random { cells: usize, seed: u64, cell_size: f64 },
-    /// A file (text grid, mask or polygon).
-    File { path: PathBuf, cell_size: f64, cell_px: usize, start: Option<Cell>, invert: bool },
-}
-
-/// Everything a resumed mission needs (`--state`, `--resume`). Paths are absolute, so that a
-/// mission resumes from any directory.
-#[derive(Debug, Clone, Serialize, Deserialize)]
-struct MissionFile {
-    format: String,
-    source: Source,
-    drift: Drift,
-    sensor: GridSensor,
-    seed: u64,
-    out: PathBuf,
-    svg: PathBuf,
-    /// The event trace, if the mission writes one.
-    trace: Option<PathBuf>,
-    /// The trace's length in bytes when this state was taken: a resumed mission cuts the
-    /// trace back to it, so that the events after the state are not written twice.
-    trace_len: u64,
-    mission: Mission,
-}
-
-/// `/2`: the trace and its length are recorded; a search's lawn is computed, not listed.
-const MISSION_FORMAT: &str = "stopscan-mission/2";
-
-fn absolute(p: &Path) -> PathBuf {
-    std::path::absolute(p).unwrap_or_else(|_| p.to_path_buf())
-}
+use crate::output::{Spinner, Table, num};
 
 /// The soft limits on a mission's size: robots and cells (of a random region, or `bench roi`).
 pub(crate) fn check_size(
@@ -80,31 +46,6 @@ pub(crate) fn check_size(
         "about 300 bytes and 2.5 µs per cell",
         "",
     )
-}
-
-fn load(source: &Source) -> anyhow::Result<GridRoi> {
-    Ok(match source {
-        Source::Random { cells, seed, cell_size } => {
-            GridRoi::random(*cells, *seed)?.with_cell_size(*cell_size)?
-        }
-        Source::File { path, cell_size, cell_px, start, invert } => {
-            let opts = GridOptions {
-                cell_size: *cell_size,
-                cell_px: *cell_px,
-                start: *start,
-                invert: *invert,
-            };
-            stopscan::io::grid::read_roi(path, &opts)?
-        }
-    })
-}
-
-fn world_of(roi: GridRoi, drift: Drift, sensor: GridSensor, seed: u64, search: bool) -> GridWorld {
-    if search {
-        GridWorld::without_root(roi, drift, sensor, seed)
-    } else {
-        GridWorld::new(roi, drift, sensor, seed)
-    }
 }
 
 fn parse_cell(s: &str, what: &str) -> anyhow::Result<Cell> {
@@ -148,8 +89,9 @@ fn parse_box(s: &str, g: &Global) -> anyhow::Result<(Cell, Cell)> {
     Ok(([r0, c0], [r1, c1]))
 }
 
-/// A fresh mission from the command line.
-fn fresh(a: &RoiArgs, g: &Global) -> anyhow::Result<MissionFile> {
+/// A fresh mission from the command line: the arguments checked (and the soft limits), the
+/// region loaded.
+fn fresh(a: &RoiArgs, g: &Global) -> anyhow::Result<MissionRun> {
     let start = a.start.as_deref().map(|s| parse_cell(s, "--start")).transpose()?;
     check_size(g, "--random", a.random.unwrap_or(0), a.robots)?;
     if a.camera && !(1..=MAX_FRAMES).contains(&a.frames) {
@@ -165,14 +107,14 @@ fn fresh(a: &RoiArgs, g: &Global) -> anyhow::Result<MissionFile> {
         );
     }
     let source = match (&a.grid, a.random) {
-        (Some(p), None) => Source::File {
-            path: absolute(p),
+        (Some(p), None) => RegionSource::File {
+            path: std::path::absolute(p).unwrap_or_else(|_| p.clone()),
             cell_size: a.cell_m,
             cell_px: a.cell_px,
             start,
             invert: a.invert_mask,
         },
-        (None, Some(c)) => Source::Random { cells: c, seed: g.seed, cell_size: a.cell_m },
+        (None, Some(c)) => RegionSource::Random { cells: c, seed: g.seed, cell_size: a.cell_m },
         _ => bail!("give the region with --grid FILE or --random CELLS (or --resume STATE)"),
     };
     if start.is_some() && a.random.is_some() {
@@ -199,14 +141,7 @@ fn fresh(a: &RoiArgs, g: &Global) -> anyhow::Result<MissionFile> {
         _ => bail!("a lawn-mowing search needs both --search-box and --launch"),
     };
     let cost = CostModel::new(a.scan_time, a.move_time, a.robot_speed)?;
-    let plan = MissionPlan {
-        robots: a.robots,
-        cost,
-        battery_s: a.battery_s,
-        search,
-        map: a.camera || search.is_some() || matches!(source, Source::File { .. }),
-    };
-    let roi = load(&source)?;
+    let roi = source.load()?;
     if a.camera {
         // Every region cell is scanned about once, and a third of the search box's cells.
         let scans = roi.len() as f64
@@ -232,179 +167,49 @@ fn fresh(a: &RoiArgs, g: &Global) -> anyhow::Result<MissionFile> {
             "give fewer --frames or a coarser --cell-m",
         )?;
     }
-    let world = world_of(roi, drift, sensor.clone(), g.seed, search.is_some());
-    let recording = if a.no_paths { Recording::NONE } else { Recording::PATHS };
-    let mission = Mission::new(&world, plan, recording)?;
     let out = g.out.clone().unwrap_or_else(|| PathBuf::from("roi-run.json"));
-    let svg = a.svg.clone().unwrap_or_else(|| out.with_extension("svg"));
-    Ok(MissionFile {
-        format: MISSION_FORMAT.into(),
+    let spec = MissionSpec {
         source,
         drift,
         sensor,
+        robots: a.robots,
+        cost,
+        battery_s: a.battery_s,
+        search,
+        recording: if a.no_paths { Recording::NONE } else { Recording::PATHS },
         seed: g.seed,
-        out: absolute(&out),
-        svg: absolute(&svg),
-        trace: a.trace.as_deref().map(absolute),
-        trace_len: 0,
-        mission,
-    })
-}
-
-fn read_state(path: &Path) -> anyhow::Result<MissionFile> {
-    let text =
-        std::fs::read_to_string(path).with_context(|| format!("cannot read {}", path.display()))?;
-    let m: MissionFile = serde_json::from_str(&text).map_err(|e| {
-        anyhow::anyhow!("{}:{}:{}: not a mission state: {e}", path.display(), e.line(), e.column())
-    })?;
-    if m.format != MISSION_FORMAT {
-        bail!("{}: format {:?}, expected {MISSION_FORMAT:?}", path.display(), m.format);
-    }
-    Ok(m)
-}
-
-/// Writes the state atomically (a crash leaves the previous state or this one).
-fn write_state(path: &Path, m: &MissionFile) -> anyhow::Result<()> {
-    write_atomic(path, |w| serde_json::to_writer(w, m).map_err(std::io::Error::from))
-}
-
-/// Counts the bytes written through it (the trace's length, for the state file).
-struct Counting<W> {
-    inner: W,
-    bytes: std::rc::Rc<std::cell::Cell<u64>>,
-}
-
-impl<W: Write> Write for Counting<W> {
-    fn write(&mut self, buf: &[u8]) -> std::io::Result<usize> {
-        let n = self.inner.write(buf)?;
-        self.bytes.set(self.bytes.get() + n as u64);
-        Ok(n)
-    }
-    fn flush(&mut self) -> std::io::Result<()> {
-        self.inner.flush()
-    }
-}
-
-/// Opens the trace: a fresh mission (or a new file given on resume) starts it empty; a
-/// resumed one cuts its own trace back to the length recorded with the state and appends.
-fn open_trace(path: &Path, keep: u64) -> anyhow::Result<std::fs::File> {
-    let cannot = || format!("cannot write {}", path.display());
-    let f = std::fs::OpenOptions::new()
-        .create(true)
-        .truncate(false)
-        .read(true)
-        .write(true)
-        .open(path)
-        .with_context(cannot)?;
-    let len = f.metadata().with_context(cannot)?.len();
-    if len < keep {
-        bail!(
-            "{}: the trace has {len} bytes, fewer than the {keep} the mission state recorded; it was changed since (give --trace NEW to start a new one)",
-            path.display()
-        );
-    }
-    f.set_len(keep).with_context(cannot)?;
-    let mut f = f;
-    std::io::Seek::seek(&mut f, std::io::SeekFrom::End(0)).with_context(cannot)?;
-    Ok(f)
+        svg: a.svg.clone().unwrap_or_else(|| out.with_extension("svg")),
+        out,
+        trace: a.trace.clone(),
+    };
+    Ok(MissionRun::start(spec, roi)?)
 }
 
 pub(crate) fn run(a: &RoiArgs, g: &Global) -> anyhow::Result<()> {
     if g.format == Format::Svg {
         bail!("--format svg is only available for `stopscan visibility`");
     }
-    let (mut file, state) = match &a.resume {
+    let (mission, state) = match &a.resume {
         Some(p) => {
-            let mut f = read_state(p)?;
-            if let Some(o) = &g.out {
-                f.out = absolute(o);
-                f.svg = absolute(&a.svg.clone().unwrap_or_else(|| o.with_extension("svg")));
-            } else if let Some(s) = &a.svg {
-                f.svg = absolute(s);
-            }
-            check_file(&f.out)?;
-            check_file(&f.svg)?;
-            if let Some(t) = &a.trace {
-                // A trace named now replaces the recorded one and starts empty.
-                let t = absolute(t);
-                if f.trace.as_ref() != Some(&t) {
-                    f.trace = Some(t);
-                    f.trace_len = 0;
-                }
-            }
-            (f, Some(p.clone()))
+            let mut f = MissionState::read(p)?;
+            f.redirect(g.out.as_deref(), a.svg.as_deref(), a.trace.as_deref())?;
+            (f.resume()?, Some(p.clone()))
         }
         None => (fresh(a, g)?, a.state.clone()),
     };
-    let roi = load(&file.source)?;
-    let search = file.mission.plan.search.is_some();
-    let mut world = world_of(roi, file.drift, file.sensor.clone(), file.seed, search);
-    if file.mission.team.steps > 0 {
-        world = file.mission.restore(world);
-    }
-    let bar = crate::output::spinner();
-    let bytes = std::rc::Rc::new(std::cell::Cell::new(file.trace_len));
-    let mut trace = match &file.trace {
-        Some(p) => {
-            let f = open_trace(p, file.trace_len)?;
-            let out = Counting { inner: std::io::BufWriter::new(f), bytes: bytes.clone() };
-            Some(stopscan::sim::JsonLinesTrace::new(out))
-        }
-        None => None,
-    };
-    let limit = file.mission.step_limit(&world);
-    let interval = std::time::Duration::from_secs_f64(a.state_interval.max(0.0));
-    let mut last_write: Option<std::time::Instant> = None;
-    loop {
-        if file.mission.team.steps >= limit {
-            bail!("the mission did not finish within {limit} steps");
-        }
-        let flow = match trace.as_mut() {
-            Some(t) => file.mission.step(&mut world, t)?,
-            None => file.mission.step(&mut world, &mut NoObserver)?,
-        };
-        if let Some(e) = trace.as_mut().and_then(|t| t.error.take()) {
-            let p = file.trace.as_deref().unwrap_or(Path::new("trace"));
-            return Err(anyhow::Error::from(e).context(format!("cannot write {}", p.display())));
-        }
-        // The state, at most once per interval and at the end: each write costs time in
-        // proportion to the mission. Every step's state is consistent, so a resume from any
-        // of them ends with the same record.
-        let done = flow != Flow::Continue;
-        if let Some(p) = &state
-            && (done || last_write.is_none_or(|t| t.elapsed() >= interval))
-        {
-            file.mission.snapshot(&world);
-            file.trace_len = bytes.get();
-            write_state(p, &file)?;
-            last_write = Some(std::time::Instant::now());
-        }
-        if file.mission.team.steps % 256 == 0 {
-            bar.set_message(format!(
-                "{} steps, {:.1} s of mission",
-                file.mission.team.steps,
-                file.mission.team.makespan()
-            ));
-            bar.tick();
-        }
-        if done {
-            break;
-        }
-    }
-    bar.finish_and_clear();
-    let record = GridRunRecord::new(&world, &file.mission, file.seed);
-    write_json_atomic(&file.out, &record)?;
-    let mapped = file.mission.plan.map.then(|| file.mission.marks.positive());
-    let svg = stopscan::render::roi_svg(world.roi(), mapped.as_deref(), &record);
-    write_atomic(&file.svg, |w| w.write_all(svg.as_bytes()))?;
+    let spinner = Spinner::new();
+    let interval = Duration::from_secs_f64(a.state_interval.max(0.0));
+    let end = mission.fly(state.as_deref(), interval, &mut |m| spinner.show(m))?;
+    drop(spinner);
+    let record = &end.record;
     let stdout = std::io::stdout();
     let mut w = stdout.lock();
     if g.format == Format::Json {
-        writeln!(w, "{}", serde_json::to_string_pretty(&record)?)?;
+        writeln!(w, "{}", serde_json::to_string_pretty(record)?)?;
     } else {
-        summary(&mut w, &record)?;
-        writeln!(w, "wrote {}", file.out.display())?;
-        writeln!(w, "wrote {}", file.svg.display())?;
+        summary(&mut w, record)?;
+        writeln!(w, "wrote {}", end.out.display())?;
+        writeln!(w, "wrote {}", end.svg.display())?;
         if let Some(p) = &state {
             writeln!(w, "wrote {}", p.display())?;
         }

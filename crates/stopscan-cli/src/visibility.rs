@@ -12,20 +12,8 @@ use stopscan::algorithm::visibility::{
 };
 use stopscan::kernel::{Num, Point};
 
-use crate::cli::{BenchArgs, Format, Global, ImportArgs, VisibilityArgs};
-use crate::output::{Table, emit, num, write_atomic};
-
-pub(crate) fn parse_point(s: &str) -> anyhow::Result<Point> {
-    let v: Vec<&str> = s.split(',').map(str::trim).collect();
-    if let [x, y] = v.as_slice()
-        && let (Ok(x), Ok(y)) = (x.parse::<f64>(), y.parse::<f64>())
-        && x.is_finite()
-        && y.is_finite()
-    {
-        return Ok([x, y]);
-    }
-    bail!("expected X,Y with two finite numbers, got {s:?}")
-}
+use crate::cli::{BenchArgs, Format, Global, VisibilityArgs, parse_point};
+use crate::output::{Table, emit, num};
 
 fn range_json(r: &RangeRegion, tolerance: f64) -> serde_json::Value {
     json!({
@@ -176,7 +164,7 @@ pub(crate) fn run(a: &VisibilityArgs, g: &Global) -> anyhow::Result<()> {
 fn write_svg(g: &Global, vis: &Visibility, region: &VisibilityRegion) -> anyhow::Result<()> {
     let svg = stopscan::render::scene_svg(vis.domain(), std::slice::from_ref(region));
     match &g.out {
-        Some(path) => write_atomic(path, |w| w.write_all(svg.as_bytes())),
+        Some(path) => Ok(stopscan::io::atomic::write_bytes(path, svg.as_bytes())?),
         None => Ok(std::io::stdout().lock().write_all(svg.as_bytes())?),
     }
 }
@@ -243,42 +231,4 @@ pub(crate) fn bench(a: &BenchArgs, g: &Global) -> anyhow::Result<()> {
         "repeat": a.repeat,
     });
     emit(g, &value, true, |w| writeln!(w, "{}", serde_json::to_string(&value).unwrap_or_default()))
-}
-
-pub(crate) fn import(a: &ImportArgs, g: &Global) -> anyhow::Result<()> {
-    let start = a.start.as_deref().map(parse_point).transpose()?;
-    if !(a.min_speck_area.is_finite() && a.min_speck_area >= 0.0) {
-        bail!("--min-speck-area must be a non-negative number");
-    }
-    let is_map = a
-        .file
-        .extension()
-        .and_then(|e| e.to_str())
-        .is_some_and(|e| e.eq_ignore_ascii_case("yaml") || e.eq_ignore_ascii_case("yml"));
-    let env = if is_map {
-        let opts = stopscan::io::ros_map::RosMapOptions { start, min_speck_area: a.min_speck_area };
-        stopscan::io::ros_map::read(&a.file, &opts)?
-    } else {
-        stopscan::io::read_environment(&a.file)?
-    };
-    let start = start.map(|s| env.frame.to_local(s)).or_else(|| env.queries.first().copied());
-    let geo = stopscan::io::text_formats::to_geojson_in(&env.domain, start, &env.frame);
-    crate::output::write_json_atomic(&a.output, &geo)?;
-    let d = &env.domain;
-    let value = json!({
-        "input": a.file, "output": a.output, "vertices": d.vertex_count(), "holes": d.holes().len(),
-        "reflex_vertices": d.reflex_vertices().len(), "free_area": d.area(),
-    });
-    emit(g, &value, false, |w| {
-        writeln!(
-            w,
-            "{} -> {}: {} vertices, {} holes, {} reflex, free area {}",
-            a.file.display(),
-            a.output.display(),
-            d.vertex_count(),
-            d.holes().len(),
-            d.reflex_vertices().len(),
-            num(Some(d.area()), 3)
-        )
-    })
 }

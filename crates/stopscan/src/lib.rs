@@ -78,6 +78,7 @@ pub mod geometry;
 pub mod io;
 pub mod kernel;
 pub mod offline;
+pub mod pipeline;
 pub mod protocol;
 pub mod render;
 pub mod run_record;

@@ -481,7 +481,7 @@ impl GridRunRecord {
                 true_area: roi.true_area(),
             },
             strategy: StrategyInfo {
-                name: "recursive_dfs".into(),
+                name: crate::strategy::grid::ALGORITHM_1.name.into(),
                 params: serde_json::json!({
                     "robots": mission.plan.robots,
                     "battery_s": mission.plan.battery_s,

@@ -103,7 +103,7 @@ fn no_run_and_no_optimum_beats_the_lower_bounds() {
         }
         for &s in &starts {
             let lb = lower_bounds(world.visibility(), s, None, None).unwrap();
-            for &(strategy, _) in REGISTRY.iter().filter(|r| r.0 != "range_limited") {
+            for strategy in REGISTRY.names().filter(|&n| n != "range_limited") {
                 let mut st = by_name(strategy, &cost).unwrap();
                 let r = run(&world, s, &cost, st.as_mut(), &mut NoObserver).unwrap();
                 let label = format!("{name} from {s:?}, {strategy}");

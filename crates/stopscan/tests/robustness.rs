@@ -70,7 +70,7 @@ fn every_strategy_explores_from_a_start_on_a_wall_or_a_vertex() {
             assert!(df.tally.scans <= r + 1, "{label}: {} scans > r + 1", df.tally.scans);
             assert_complete(&world, &df, &label);
             if k % 7 == 0 {
-                for &(strategy, _) in REGISTRY {
+                for strategy in REGISTRY.names() {
                     let w = if strategy == "range_limited" { &ranged } else { &world };
                     let run = explore(w, p, strategy);
                     assert_complete(w, &run, &format!("{label}, {strategy}"));
@@ -144,7 +144,7 @@ fn a_georeferenced_polygon_is_moved_exactly_and_explored_completely() {
             let back: Vec<Point> = a.iter().map(|&p| env.frame.to_input(p)).collect();
             assert_eq!(&back, b);
         }
-        for &(s, _) in REGISTRY {
+        for s in REGISTRY.names() {
             let range = (s == "range_limited").then_some(5.0);
             let w = PolygonWorld::with_range(env.domain.clone(), range).unwrap();
             let run = explore(&w, env.queries[0], s);

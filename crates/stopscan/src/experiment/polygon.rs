@@ -158,13 +158,11 @@ fn views_benchmarks(data: &std::path::Path) -> Result<Reproduction, ExperimentEr
     }
     let mut inputs: Vec<SweepInput> = Vec::new();
     for f in &files {
-        let env = crate::io::read_environment(f).map_err(err)?;
-        let world = PolygonWorld::new(env.domain.clone()).map_err(err)?;
-        let start = env.queries.first().copied().unwrap_or_else(|| world.interior_point());
+        let (env, start) = crate::io::sweep::read_with_start(f).map_err(err)?;
         let name = f.strip_prefix(data).unwrap_or(f).display().to_string();
         inputs.push((name, env.domain, start));
     }
-    let names: Vec<&str> = crate::strategy::polygon::REGISTRY.iter().map(|r| r.0).collect();
+    let names: Vec<&str> = crate::strategy::polygon::REGISTRY.names().collect();
     // A node budget, not a clock, bounds the optimum's search (with a generous clock as a
     // safety net), so that the reproduction prints the same on every machine.
     let limits = crate::offline::polygon::ReferenceLimits {

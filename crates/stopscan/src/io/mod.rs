@@ -5,11 +5,15 @@
 //! - [`ros_map`]: ROS `map_server` occupancy grids, traced into polygons;
 //! - [`bench_format`]: the visibility benchmark format;
 //! - [`grid`]: region-of-interest files (text grid, mask, polygon);
+//! - [`atomic`]: writing files whole or not at all, and the output-target checks;
+//! - [`sweep`]: the environment files of a sweep folder;
 //! - here: [`read_environment`] by file extension, [`Environment`], [`LoadError`].
 
+pub mod atomic;
 pub mod bench_format;
 pub mod grid;
 pub mod ros_map;
+pub mod sweep;
 pub mod text_formats;
 
 use crate::geometry::{Frame, InvalidEnvironment};

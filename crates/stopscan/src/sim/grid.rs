@@ -10,7 +10,7 @@ use crate::protocol::grid::{
 };
 use crate::protocol::{Action, CostModel};
 use crate::strategy::grid::{
-    Battery, GridFeedback, GridStrategy, LawnMower, MissionRobot, RecursiveDfs,
+    ALGORITHM_1, Battery, GridFeedback, GridStrategy, LawnMower, MissionRobot,
 };
 use crate::world::grid::GridWorld;
 
@@ -206,7 +206,7 @@ impl Mission {
         let start = plan.search.map_or(world.roi().start(), |s| s.launch);
         let robots = (0..plan.robots)
             .map(|i| {
-                let dfs = RecursiveDfs::new(i);
+                let dfs = (ALGORITHM_1.build)(i);
                 let searched = match plan.search {
                     Some(s) => LawnMower::sweep(dfs, s.min, s.max),
                     None => LawnMower::none(dfs),

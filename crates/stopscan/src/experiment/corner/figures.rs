@@ -443,26 +443,31 @@ pub(super) fn circle_table_1() -> Reproduction {
     }
 }
 
-pub(super) fn circle_fig_7(seed: u64) -> Reproduction {
-    let small = ratio_curve(10.0, 2000);
-    let large = ratio_curve(100.0, 2000);
+/// `c(d)`, as a reproduction's error.
+fn c_of(d: f64) -> Result<f64, ExperimentError> {
+    circle::ratio(d).map_err(model_err)
+}
+
+pub(super) fn circle_fig_7(seed: u64) -> Result<Reproduction, ExperimentError> {
+    let small = ratio_curve(10.0, 2000).map_err(model_err)?;
+    let large = ratio_curve(100.0, 2000).map_err(model_err)?;
     // The maximum sits on a cusp (a threshold); refine around the sampled maximum.
     let &(d0, _) = small.iter().max_by(|a, b| a.1.total_cmp(&b.1)).expect("non-empty");
     let (mut lo, mut hi) = (d0 - 0.01, d0 + 0.01);
     for _ in 0..200 {
         let (m1, m2) = (lo + (hi - lo) / 3.0, hi - (hi - lo) / 3.0);
-        if circle::ratio(m1) < circle::ratio(m2) { lo = m1 } else { hi = m2 }
+        if c_of(m1)? < c_of(m2)? { lo = m1 } else { hi = m2 }
     }
     let d_star = 0.5 * (lo + hi);
-    let six = optimal_scans(4.4, 6, seed);
+    let six = optimal_scans(4.4, 6, seed).map_err(model_err)?;
     let by_scans: Vec<(usize, f64)> =
         six.ratio_by_scans.iter().copied().enumerate().skip(1).collect();
     let best = (six.scans, six.ratio);
     let mut rows = vec![
-        Row::new("max c(d)", Some(2.168_544), circle::ratio(d_star)),
+        Row::new("max c(d)", Some(2.168_544), c_of(d_star)?),
         Row::new("argmax d", Some(4.400_875), d_star),
-        Row::new("c(40)", Some(2.001_525), circle::ratio(40.0)),
-        Row::new("c(4.4), circle strategy", Some(2.1685), circle::ratio(4.4)),
+        Row::new("c(40)", Some(2.001_525), c_of(40.0)?),
+        Row::new("c(4.4), circle strategy", Some(2.1685), c_of(4.4)?),
         Row::new(
             "c(4.4), global optimum with 3 scans, the circle strategy's count",
             Some(2.12),
@@ -476,7 +481,7 @@ pub(super) fn circle_fig_7(seed: u64) -> Reproduction {
         Row::new(
             "c(1), global optimum with 1 scan",
             Some(1.808_201),
-            optimal_scans(1.0, 1, seed).ratio,
+            optimal_scans(1.0, 1, seed).map_err(model_err)?.ratio,
         ),
     ];
     for c in [1.9, 1.99, 1.999] {
@@ -489,7 +494,7 @@ pub(super) fn circle_fig_7(seed: u64) -> Reproduction {
         rows.push(Row::new(format!("Theorem 1, c = {c}: bound 1/(2 − c)"), None, r.bound));
     }
     for d in [100.0, 1000.0, 10000.0] {
-        rows.push(Row::new(format!("c({d}) − 2 (→ 0, Theorem 2)"), None, circle::ratio(d) - 2.0));
+        rows.push(Row::new(format!("c({d}) − 2 (→ 0, Theorem 2)"), None, c_of(d)? - 2.0));
     }
     let lb = |pts: &[(f64, f64)]| pts.iter().map(|&(d, _)| (d, 2.0)).collect::<Vec<_>>();
     let charts = vec![
@@ -520,7 +525,7 @@ pub(super) fn circle_fig_7(seed: u64) -> Reproduction {
             },
         ),
     ];
-    Reproduction {
+    Ok(Reproduction {
         id: "circle-fig-7".into(),
         model: vec![
             "units: scan cost 1, speed 1; c(d) on 2000 distances in (0, 10] and in (0, 100]".into(),
@@ -534,7 +539,7 @@ pub(super) fn circle_fig_7(seed: u64) -> Reproduction {
                 best.1,
                 best.0,
                 100.0 * (1.0 - best.1 / 2.12),
-                100.0 * (circle::ratio(4.4) / best.1 - 1.0)
+                100.0 * (c_of(4.4)? / best.1 - 1.0)
             ),
             "the robot stops once it sees the edge and the corner sees every edge, so a spare scan point can wait at the corner for free: the optimum with exactly k points equals the optimum with at most k".into(),
             "the model: edges over the whole (0°, 180°] behind the corner, the optimum for an edge at θ is one scan at the nearest point seeing it (1 + d·sin θ up to 90°, 1 + d beyond), a scan point sees edges up to its angle ∠ABP and the corner sees all, so the robot always ends at the corner when no point has seen the edge".into(),
@@ -544,7 +549,7 @@ pub(super) fn circle_fig_7(seed: u64) -> Reproduction {
         charts,
         images: vec![],
         tables: vec![],
-    }
+    })
 }
 
 #[cfg(test)]

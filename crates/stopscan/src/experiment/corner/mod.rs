@@ -287,18 +287,21 @@ pub fn reproduce(id: &str, samples: usize, seed: u64) -> Result<Reproduction, Ex
         "corner-fig-7" => figures::corner_fig_7(),
         "corner-fig-8" => figures::corner_fig_8(),
         "circle-table-1" => Ok(figures::circle_table_1()),
-        "circle-fig-7" => Ok(figures::circle_fig_7(seed)),
+        "circle-fig-7" => figures::circle_fig_7(seed),
         _ => Err(ExperimentError::UnknownId(id.into(), IDS.join(", "))),
     }
 }
 
 /// `c(d)` on `n` evenly spaced distances in `(0, d_max]`.
-pub fn ratio_curve(d_max: f64, n: usize) -> Vec<(f64, f64)> {
+///
+/// # Errors
+/// [`circle::CircleError`] unless `d_max` is finite and positive.
+pub fn ratio_curve(d_max: f64, n: usize) -> Result<Vec<(f64, f64)>, circle::CircleError> {
     (1..=n)
         .into_par_iter()
         .map(|i| {
             let d = d_max * i as f64 / n as f64;
-            (d, circle::ratio(d))
+            circle::ratio(d).map(|c| (d, c))
         })
         .collect()
 }
@@ -320,7 +323,11 @@ pub struct Demo {
 /// # Errors
 /// Model errors (none for the built-in values).
 pub fn demo() -> Result<Demo, ExperimentError> {
-    let circles = [0.5, 1.0, 2.0, 4.4, 10.0, 40.0].iter().map(|&d| circle::solve(d)).collect();
+    let circles = [0.5, 1.0, 2.0, 4.4, 10.0, 40.0]
+        .iter()
+        .map(|&d| circle::solve(d))
+        .collect::<Result<_, _>>()
+        .map_err(model_err)?;
     let setup = paper_setup(2.0);
     let belief = fig5(4)?;
     let mut four = Vec::new();
@@ -334,7 +341,7 @@ pub fn demo() -> Result<Demo, ExperimentError> {
         x_label: "distance d (units of v·τ)".into(),
         y_label: "competitive ratio c".into(),
         series: vec![
-            Series::line("c(d)", ratio_curve(20.0, 800)),
+            Series::line("c(d)", ratio_curve(20.0, 800).map_err(model_err)?),
             Series::line("lower bound 2", vec![(0.0, 2.0), (20.0, 2.0)]).dashed(),
         ],
     };

@@ -176,7 +176,7 @@ mod tests {
     #[test]
     fn circle_stop_list_attains_c() {
         for d in [0.5, 1.0, 4.4, 40.0] {
-            let sol = circle::solve(d);
+            let sol = circle::solve(d).unwrap();
             let w = worst_case(&sol.stop_list(), &setup(d));
             assert!(
                 (w.worst_ratio - sol.ratio).abs() < 1e-9,

@@ -104,6 +104,24 @@ pub struct OptimalScans {
     pub circle_scans: usize,
 }
 
+/// The most intermediate scans [`optimal_scans`] places: the search is over `2·k`
+/// coordinates, and each scan more costs seconds.
+pub const MAX_SCANS: usize = 12;
+
+/// Why the optimum cannot be searched for.
+#[derive(Debug, Clone, Copy, PartialEq, thiserror::Error)]
+#[non_exhaustive]
+pub enum OptimalError {
+    /// The distance is not finite and positive.
+    #[error(transparent)]
+    Distance(#[from] circle::CircleError),
+    /// More than [`MAX_SCANS`] intermediate scans.
+    #[error(
+        "at most {MAX_SCANS} intermediate scans can be placed (the optimisation is over 2·scans coordinates), got {0}"
+    )]
+    TooManyScans(usize),
+}
+
 /// Finds the globally optimal positions of at most `k` intermediate scans at distance `d`.
 ///
 /// The robot stops as soon as it sees the edge, and the corner sees every edge, so a point
@@ -120,24 +138,33 @@ pub struct OptimalScans {
 /// points, so the two always agree.
 ///
 /// # Arguments
-/// `d > 0`; `k ≤ 12`; `seed` drives the random restarts.
+/// `d > 0`; `k ≤ 12` ([`MAX_SCANS`]); `seed` drives the random restarts.
+///
+/// # Errors
+/// [`OptimalError`] for a distance that is not finite and positive, or `k` above
+/// [`MAX_SCANS`].
 ///
 /// # Complexity
 /// About `k²` restarted simplex searches of a few thousand evaluations of [`plane_ratio`].
-pub fn optimal_scans(d: f64, k: usize, seed: u64) -> OptimalScans {
+pub fn optimal_scans(d: f64, k: usize, seed: u64) -> Result<OptimalScans, OptimalError> {
     optimal_scans_with(d, k, seed, &mut |_, _| {})
 }
 
 /// [`optimal_scans`], calling `progress(j, ratio)` after the search with `j` points (`ratio`:
 /// the best with at most `j`), for a progress display.
+///
+/// # Errors
+/// As [`optimal_scans`].
 pub fn optimal_scans_with(
     d: f64,
     k: usize,
     seed: u64,
     progress: &mut dyn FnMut(usize, f64),
-) -> OptimalScans {
-    assert!(d.is_finite() && d > 0.0, "the distance must be finite and positive");
-    let circ = circle::solve(d);
+) -> Result<OptimalScans, OptimalError> {
+    let circ = circle::solve(d)?;
+    if k > MAX_SCANS {
+        return Err(OptimalError::TooManyScans(k));
+    }
     let mut rng = ChaCha8Rng::seed_from_u64(seed);
     let round = |pts: &[[f64; 2]]| -> Vec<[f64; 2]> {
         let mut out: Vec<[f64; 2]> =
@@ -169,7 +196,7 @@ pub fn optimal_scans_with(
         progress(j, best.1);
     }
     let (scan_points, ratio) = best;
-    OptimalScans {
+    Ok(OptimalScans {
         distance: d,
         max_scans: k,
         scans: scan_points.len(),
@@ -178,7 +205,7 @@ pub fn optimal_scans_with(
         ratio_by_scans,
         circle_ratio: circ.ratio,
         circle_scans: circ.scans,
-    }
+    })
 }
 
 /// The best `k` points found from the fixed starts and the warm starts built from `fewer`
@@ -255,7 +282,7 @@ mod tests {
 
     #[test]
     fn plane_ratio_of_circle_points_is_c() {
-        let s = circle::solve(4.4);
+        let s = circle::solve(4.4).unwrap();
         let r = plane_ratio(4.4, &s.scan_points[..s.scans]);
         assert!((r - s.ratio).abs() < 1e-9, "{r} vs {}", s.ratio);
     }
@@ -267,7 +294,14 @@ mod tests {
 
     #[test]
     fn the_paper_optimum_at_d1() {
-        let o = optimal_scans(1.0, 1, 0);
+        let o = optimal_scans(1.0, 1, 0).unwrap();
         assert!((o.ratio - 1.808_201).abs() < 1e-6, "{o:?}");
+    }
+
+    #[test]
+    fn bad_input_is_an_error() {
+        assert!(matches!(optimal_scans(0.0, 1, 0), Err(OptimalError::Distance(_))));
+        assert!(matches!(optimal_scans(f64::NAN, 1, 0), Err(OptimalError::Distance(_))));
+        assert_eq!(optimal_scans(1.0, 13, 0), Err(OptimalError::TooManyScans(13)));
     }
 }

@@ -13,8 +13,23 @@
 
 use serde::{Deserialize, Serialize};
 
+use crate::kernel::Num;
 use crate::protocol::corner::{CORNER, LastStep, Route};
 use crate::strategy::corner::StopList;
+
+/// Why the circle strategy cannot be computed.
+#[derive(Debug, Clone, Copy, PartialEq, thiserror::Error)]
+#[non_exhaustive]
+pub enum CircleError {
+    /// The normalised distance to the corner is not a finite positive number.
+    #[error("the distance must be a finite positive number, got {}", Num(*.0))]
+    Distance(f64),
+}
+
+/// `d` if it is a distance the recursion accepts: finite and positive.
+fn distance(d: f64) -> Result<f64, CircleError> {
+    if d.is_finite() && d > 0.0 { Ok(d) } else { Err(CircleError::Distance(d)) }
+}
 
 /// The largest `c` that the bisection starts from when it reaches; `c(d) ≤ 2.17` for all `d`.
 const SAFE_HI: f64 = 3.0;
@@ -87,30 +102,37 @@ fn step_limit(d: f64, e: f64) -> usize {
 /// # Returns
 /// `c(d)` to a relative precision of 1e-12.
 ///
+/// # Errors
+/// [`CircleError::Distance`] unless `d` is finite and positive.
+///
 /// # Complexity
 /// O(20 · steps) time (20 rounds of three interleaved walks), O(1) space.
 ///
 /// # Example
 /// ```
-/// let c = stopscan::strategy::corner::circle::ratio(40.0);
+/// let c = stopscan::strategy::corner::circle::ratio(40.0).unwrap();
 /// assert!((c - 2.001525).abs() < 1e-6);
 /// ```
-pub fn ratio(d: f64) -> f64 {
-    1.0 + ratio_excess(d)
+pub fn ratio(d: f64) -> Result<f64, CircleError> {
+    Ok(1.0 + ratio_excess(d)?)
 }
 
 /// `c(d) − 1`, searched directly so that small distances keep full relative precision.
-pub fn ratio_excess(d: f64) -> f64 {
-    excess_to(d, 1e-12)
+///
+/// # Errors
+/// [`CircleError::Distance`] unless `d` is finite and positive.
+pub fn ratio_excess(d: f64) -> Result<f64, CircleError> {
+    Ok(excess_to(distance(d)?, 1e-12))
 }
 
 /// `c(d) − 1` to a relative tolerance `tol` (0 means: to adjacent floating-point numbers).
 ///
 /// Each round runs three walks at the quarter points of the bracket in lockstep
 /// ([`reaches3`]): the walk is a chain of dependent square roots, so three independent
-/// chains cost little more than one, and each round shrinks the bracket fourfold.
+/// chains cost little more than one, and each round shrinks the bracket fourfold. `d` is
+/// finite and positive ([`distance`]).
 fn excess_to(d: f64, tol: f64) -> f64 {
-    assert!(d.is_finite() && d > 0.0, "the distance must be finite and positive");
+    debug_assert!(d.is_finite() && d > 0.0, "the distance must be finite and positive");
     // e = d reaches at once (x_1 = d is the whole diameter).
     let mut hi = d;
     if hi > SAFE_HI - 1.0 && reaches3(d, [SAFE_HI - 1.0; 3])[0] {
@@ -208,10 +230,13 @@ impl CircleSolution {
 
 /// Solves the circle strategy at normalised distance `d`: ratio, steps and scan points.
 ///
+/// # Errors
+/// [`CircleError::Distance`] unless `d` is finite and positive.
+///
 /// # Complexity
 /// O(45 · steps) time, O(steps) space.
-pub fn solve(d: f64) -> CircleSolution {
-    let e = ratio_excess(d);
+pub fn solve(d: f64) -> Result<CircleSolution, CircleError> {
+    let e = ratio_excess(d)?;
     let c = 1.0 + e;
     let (mut steps, mut angles, mut points) = (Vec::new(), Vec::new(), Vec::new());
     let mut last_cos = 1.0;
@@ -225,14 +250,14 @@ pub fn solve(d: f64) -> CircleSolution {
     steps.push(d * last_cos);
     angles.push(CORNER);
     points.push([d, 0.0]);
-    CircleSolution {
+    Ok(CircleSolution {
         distance: d,
         ratio: c,
         scans: steps.len() - 1,
         steps,
         angles,
         scan_points: points,
-    }
+    })
 }
 
 /// One row of the circle paper's Table 1.
@@ -247,7 +272,15 @@ pub struct Threshold {
 }
 
 /// The intermediate scans the circle strategy needs at distance `d`.
-pub fn scans(d: f64) -> usize {
+///
+/// # Errors
+/// [`CircleError::Distance`] unless `d` is finite and positive.
+pub fn scans(d: f64) -> Result<usize, CircleError> {
+    Ok(scans_at(distance(d)?))
+}
+
+/// [`scans`] for a finite positive `d`.
+fn scans_at(d: f64) -> usize {
     // Near a threshold the extra scan's step is O(Δd²): use the last bits.
     match walk(d, excess_to(d, 0.0), |_, _, _| ()) {
         Outcome::Reached(n) => n - 1,
@@ -264,13 +297,13 @@ pub fn thresholds(count: usize) -> Vec<Threshold> {
     let mut lo = 1e-6;
     for k in 0..count {
         let mut hi = lo;
-        while scans(hi) <= k {
+        while scans_at(hi) <= k {
             lo = hi;
             hi += 0.05 * (1.0 + hi.sqrt());
         }
         while hi - lo > 1e-12 * hi {
             let mid = 0.5 * (lo + hi);
-            if scans(mid) <= k {
+            if scans_at(mid) <= k {
                 lo = mid;
             } else {
                 hi = mid;
@@ -324,20 +357,32 @@ mod tests {
         assert!(matches!(run(40.0, 2.0016), Outcome::Reached(_)));
         assert!(matches!(run(40.0, 2.0015), Outcome::Collapsed(_)));
         // The paper prints "2.001525..." (truncated).
-        assert_eq!((ratio(40.0) * 1e6).floor(), 2_001_525.0);
+        assert_eq!((ratio(40.0).unwrap() * 1e6).floor(), 2_001_525.0);
+    }
+
+    #[test]
+    fn distances_that_are_not_finite_and_positive_are_errors() {
+        for d in [0.0, -1.0, f64::NAN, f64::INFINITY] {
+            assert!(matches!(solve(d), Err(CircleError::Distance(_))), "{d}");
+            assert!(ratio(d).is_err() && scans(d).is_err(), "{d}");
+        }
+        assert_eq!(
+            solve(-1.0).unwrap_err().to_string(),
+            "the distance must be a finite positive number, got -1"
+        );
     }
 
     #[test]
     fn small_distances_go_straight() {
         for d in [0.1, 0.3, 0.6] {
-            assert!((ratio(d) - (1.0 + d)).abs() < 1e-12);
-            assert_eq!(scans(d), 0);
+            assert!((ratio(d).unwrap() - (1.0 + d)).abs() < 1e-12);
+            assert_eq!(scans(d).unwrap(), 0);
         }
     }
 
     #[test]
     fn solution_is_consistent() {
-        let s = solve(4.4);
+        let s = solve(4.4).unwrap();
         assert_eq!(s.steps.len(), s.scans + 1);
         assert_eq!(s.scan_points.len(), s.scans + 1);
         assert!((s.steps[0] - (s.ratio - 1.0)).abs() < 1e-12);

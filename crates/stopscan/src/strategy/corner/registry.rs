@@ -5,24 +5,78 @@ use serde::{Deserialize, Serialize};
 use super::mdp::{CornerMdp, Memory, Reading};
 use super::{ExprecReading, StopList, circle, exprec, unirec};
 use crate::protocol::corner::{AngleDistribution, CornerSetup, LastStep, Route};
+use crate::strategy::{Entry, Registry};
 
-/// `(name, one-line summary)` of every corner strategy, in display order.
-pub const REGISTRY: &[(&str, &str)] = &[
-    ("unirec", "scans at δ, 2δ, 3δ, … with δ = τv/D (corner paper, Table I; ratio → π)"),
-    ("exprec", "scans at exponentially spaced stops (corner paper, Table I; ratio → 2.2214)"),
-    ("circle", "the circle paper's strategy at d = D/(vτ): chords with equalised ratio c(d) → 2"),
-    ("policy1", "MDP1's optimal policy for the belief (memoryless states s_i, s'_i)"),
-    ("policy2", "MDP2's optimal policy for the belief (states s_ij, remembers the last scan)"),
-];
+/// How a corner registry entry builds its stop list, for a setup and a belief (the belief is
+/// used by the MDP policies only).
+pub type CornerBuild = fn(
+    setup: &CornerSetup,
+    belief: &AngleDistribution,
+    options: &BuildOptions,
+) -> Result<StopList, BuildError>;
+
+/// Every corner strategy, in display order: names, help text and construction.
+pub const REGISTRY: Registry<CornerBuild> = Registry::new(&[
+    Entry {
+        name: "unirec",
+        summary: "scans at δ, 2δ, 3δ, … with δ = τv/D (corner paper, Table I; ratio → π)",
+        build: |s, _, o| unirec(s.delta(), o.route, o.last_step).map_err(|e| invalid(&e)),
+    },
+    Entry {
+        name: "exprec",
+        summary: "scans at exponentially spaced stops (corner paper, Table I; ratio → 2.2214)",
+        build: |s, _, o| exprec(s.delta(), o.exprec, o.route, o.last_step).map_err(|e| invalid(&e)),
+    },
+    Entry {
+        name: "circle",
+        summary: "the circle paper's strategy at d = D/(vτ): chords with equalised ratio c(d) → 2",
+        build: |s, _, _| {
+            circle::solve(s.normalised_distance()).map(|c| c.stop_list()).map_err(|e| invalid(&e))
+        },
+    },
+    Entry {
+        name: "policy1",
+        summary: "MDP1's optimal policy for the belief (memoryless states s_i, s'_i)",
+        build: |s, b, o| mdp(Memory::None, s, b, o),
+    },
+    Entry {
+        name: "policy2",
+        summary: "MDP2's optimal policy for the belief (states s_ij, remembers the last scan)",
+        build: |s, b, o| mdp(Memory::Last, s, b, o),
+    },
+]);
 
 /// The names in [`REGISTRY`].
 pub fn names() -> impl Iterator<Item = &'static str> {
-    REGISTRY.iter().map(|r| r.0)
+    REGISTRY.names()
 }
 
 /// One line per strategy, for `--help`.
 pub fn help() -> String {
-    REGISTRY.iter().map(|(n, s)| format!("{n}: {s}")).collect::<Vec<_>>().join("\n")
+    REGISTRY.help()
+}
+
+fn invalid(e: &dyn std::fmt::Display) -> BuildError {
+    BuildError::Invalid(e.to_string())
+}
+
+/// The optimal policy of MDP1 or MDP2 for `belief`, as a stop list.
+fn mdp(
+    memory: Memory,
+    setup: &CornerSetup,
+    belief: &AngleDistribution,
+    o: &BuildOptions,
+) -> Result<StopList, BuildError> {
+    CornerMdp {
+        setup: *setup,
+        step: o.mdp_step,
+        memory,
+        reading: o.reading,
+        belief: belief.clone(),
+    }
+    .solve()
+    .map(|p| p.stop_list)
+    .map_err(|e| invalid(&e))
 }
 
 /// How the registry builds strategies: the readings of the corner paper and the MDP grid.
@@ -75,28 +129,8 @@ pub fn build(
     belief: &AngleDistribution,
     o: &BuildOptions,
 ) -> Result<StopList, BuildError> {
-    let invalid = |e: &dyn std::fmt::Display| BuildError::Invalid(e.to_string());
-    let delta = setup.delta();
-    let mdp = |memory| {
-        CornerMdp {
-            setup: *setup,
-            step: o.mdp_step,
-            memory,
-            reading: o.reading,
-            belief: belief.clone(),
-        }
-        .solve()
-        .map(|p| p.stop_list)
-        .map_err(|e| invalid(&e))
-    };
-    match name {
-        "unirec" => unirec(delta, o.route, o.last_step).map_err(|e| invalid(&e)),
-        "exprec" => exprec(delta, o.exprec, o.route, o.last_step).map_err(|e| invalid(&e)),
-        "circle" => Ok(circle::solve(setup.normalised_distance()).stop_list()),
-        "policy1" => mdp(Memory::None),
-        "policy2" => mdp(Memory::Last),
-        other => Err(BuildError::Unknown(other.into(), names().collect::<Vec<_>>().join(", "))),
-    }
+    let entry = REGISTRY.get(name).map_err(|e| BuildError::Unknown(e.name, e.known))?;
+    (entry.build)(setup, belief, o)
 }
 
 #[cfg(test)]

@@ -27,6 +27,7 @@ pub use battery::Battery;
 pub use dfs::RecursiveDfs;
 pub use search::LawnMower;
 
+use super::{Entry, Registry};
 use crate::protocol::grid::{Cell, GridContext, GridObservation, Record};
 use crate::protocol::{Action, Feedback};
 
@@ -51,8 +52,16 @@ pub trait GridStrategy {
 /// optional battery.
 pub type MissionRobot = Battery<LawnMower<RecursiveDfs>>;
 
-/// `(name, summary)` of the grid strategies.
-pub const REGISTRY: &[(&str, &str)] = &[(
-    "recursive_dfs",
-    "Algorithm 1: multi-robot recursive depth-first search over a binary tree of cells",
-)];
+/// How a grid registry entry builds the strategy of robot `robot` (its index in the team).
+pub type GridBuild = fn(robot: usize) -> RecursiveDfs;
+
+/// Algorithm 1, the grid family's strategy: every mission robot runs it (inside its search
+/// and battery layers).
+pub const ALGORITHM_1: Entry<GridBuild> = Entry {
+    name: "recursive_dfs",
+    summary: "Algorithm 1: multi-robot recursive depth-first search over a binary tree of cells",
+    build: RecursiveDfs::new,
+};
+
+/// Every grid strategy: names, help text and construction.
+pub const REGISTRY: Registry<GridBuild> = Registry::new(&[ALGORITHM_1]);

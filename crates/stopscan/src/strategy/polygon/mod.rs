@@ -22,6 +22,7 @@ pub use known::Placement;
 pub use nearest_frontier::NearestFrontier;
 pub use range_limited::RangeLimited;
 
+use super::{Entry, Registry, UnknownStrategy};
 use crate::kernel::Point;
 use crate::protocol::polygon::PolygonObservation;
 use crate::protocol::{Action, CostModel, Feedback};
@@ -29,24 +30,49 @@ use crate::protocol::{Action, CostModel, Feedback};
 /// What the driver tells a polygon strategy before asking for its next action.
 pub type PolygonFeedback = Feedback<Point, PolygonObservation>;
 
-/// `(name, summary)` of every polygon strategy, in display order.
-pub const REGISTRY: &[(&str, &str)] = &[
-    ("depth_first", "the paper's algorithm: depth-first over windows, at most r + 1 scans"),
-    ("nearest_frontier", "frontier-based (Yamauchi): the nearest unexplored window by travel"),
-    ("greedy_nbv", "greedy next-best-view: most predicted new area per second of cost"),
-    ("range_limited", "the paper's range-limited algorithm: open space, then boundary following"),
-];
+/// How a polygon registry entry builds its strategy: fresh, for a run priced by `cost`
+/// (strategies that price their choices use it).
+pub type PolygonBuild = fn(cost: &CostModel) -> Box<dyn PolygonStrategy + Send>;
+
+/// Every polygon strategy, in display order: names, help text and construction.
+pub const REGISTRY: Registry<PolygonBuild> = Registry::new(&[
+    Entry {
+        name: "depth_first",
+        summary: "the paper's algorithm: depth-first over windows, at most r + 1 scans",
+        build: |_| Box::new(DepthFirst::new()),
+    },
+    Entry {
+        name: "nearest_frontier",
+        summary: "frontier-based (Yamauchi): the nearest unexplored window by travel",
+        build: |_| Box::new(NearestFrontier::new()),
+    },
+    Entry {
+        name: "greedy_nbv",
+        summary: "greedy next-best-view: most predicted new area per second of cost",
+        build: |cost| Box::new(GreedyNbv::new(*cost)),
+    },
+    Entry {
+        name: "range_limited",
+        summary: "the paper's algorithm for a sensor range (needs one): open space, then boundary following",
+        build: |_| Box::new(RangeLimited::new()),
+    },
+]);
 
 /// A fresh strategy by registry name; `cost` is the cost model of the run (strategies that
 /// price their choices use it).
+///
+/// # Errors
+/// [`UnknownStrategy`] listing the registered names.
+pub fn build(
+    name: &str,
+    cost: &CostModel,
+) -> Result<Box<dyn PolygonStrategy + Send>, UnknownStrategy> {
+    REGISTRY.get(name).map(|e| (e.build)(cost))
+}
+
+/// [`build`], `None` for an unknown name.
 pub fn by_name(name: &str, cost: &CostModel) -> Option<Box<dyn PolygonStrategy + Send>> {
-    match name {
-        "depth_first" => Some(Box::new(DepthFirst::new())),
-        "nearest_frontier" => Some(Box::new(NearestFrontier::new())),
-        "greedy_nbv" => Some(Box::new(GreedyNbv::new(*cost))),
-        "range_limited" => Some(Box::new(RangeLimited::new())),
-        _ => None,
-    }
+    build(name, cost).ok()
 }
 
 /// An online polygon-exploration strategy.
@@ -55,4 +81,22 @@ pub trait PolygonStrategy {
     fn name(&self) -> &str;
     /// The next action: move in a straight line to a point, scan, or done.
     fn act(&mut self, feedback: &PolygonFeedback) -> Action<Point>;
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn every_entry_builds_the_strategy_it_names() {
+        for name in REGISTRY.names() {
+            let s = build(name, &CostModel::default()).unwrap();
+            assert_eq!(s.name(), name);
+        }
+        let e = build("warp", &CostModel::default()).err().unwrap();
+        assert_eq!(
+            e.to_string(),
+            "unknown strategy \"warp\"; use one of: depth_first, nearest_frontier, greedy_nbv, range_limited"
+        );
+    }
 }

@@ -1,0 +1,172 @@
+//! `stopscan explore`: one environment, a sweep of a folder, and `generate` to make inputs.
+
+mod common;
+
+use serde_json::Value;
+
+use common::{f, fails, json, stopscan, temp};
+
+#[test]
+fn explore_trace_range_and_determinism() {
+    let dir = temp("trace");
+    std::fs::create_dir_all(&dir).unwrap();
+    let env = dir.join("spiral.geojson");
+    let g = stopscan(&["generate", "spiral", "--size", "5", "-o", env.to_str().unwrap()]);
+    assert!(g.status.success());
+    // The event trace: one line per move and scan, then the tally; byte-identical on a rerun,
+    // as is the run record.
+    let trace = |name: &str| {
+        let (t, o) = (dir.join(format!("{name}.jsonl")), dir.join(format!("{name}.json")));
+        let r = stopscan(&[
+            "explore",
+            "--env",
+            env.to_str().unwrap(),
+            "--strategy",
+            "greedy_nbv",
+            "--trace",
+            t.to_str().unwrap(),
+            "--out",
+            o.to_str().unwrap(),
+        ]);
+        assert!(r.status.success(), "{}", String::from_utf8_lossy(&r.stderr));
+        let out = (std::fs::read(&t).unwrap(), std::fs::read(&o).unwrap());
+        std::fs::remove_file(t).unwrap();
+        std::fs::remove_file(o).unwrap();
+        out
+    };
+    let (t1, r1) = trace("a");
+    let (t2, r2) = trace("b");
+    assert_eq!(t1, t2, "the trace is deterministic");
+    assert_eq!(r1, r2, "the run record is deterministic");
+    let rec: Value = serde_json::from_slice(&r1).unwrap();
+    let lines: Vec<Value> =
+        String::from_utf8(t1).unwrap().lines().map(|l| serde_json::from_str(l).unwrap()).collect();
+    let m = &rec["metrics"];
+    assert_eq!(lines.len() as u64, m["scans"].as_u64().unwrap() + m["moves"].as_u64().unwrap() + 1);
+    assert_eq!(lines.last().unwrap()["event"], "finish");
+    assert_eq!(lines[0]["event"], "scan");
+    // With a range limit: the paper's range-limited algorithm, Lemma 4's bound, area / πR².
+    let vr = json(&[
+        "explore",
+        "--env",
+        env.to_str().unwrap(),
+        "--range",
+        "1.5",
+        "--strategy",
+        "range_limited",
+        "--out",
+        dir.join("range.json").to_str().unwrap(),
+    ]);
+    assert_eq!(vr["sensor"]["range"], 1.5);
+    assert!(vr["bounds"]["scans_upper_rule"].as_str().unwrap().contains("Lemma 4"));
+    assert!(
+        vr["metrics"]["scans"].as_u64().unwrap() <= vr["bounds"]["scans_upper"].as_u64().unwrap()
+    );
+    assert!(
+        vr["metrics"]["scans"].as_u64().unwrap() >= vr["bounds"]["scans_lower"].as_u64().unwrap()
+    );
+    assert_eq!(vr["metrics"]["open_windows"], 0);
+    assert!(f(&vr["metrics"], "coverage") >= 1.0 - 1e-6);
+    let bad = stopscan(&["explore", "--env", env.to_str().unwrap(), "--range", "0"]);
+    assert!(String::from_utf8_lossy(&bad.stderr).contains("--range must be a positive"));
+}
+
+#[test]
+fn explore_and_generate() {
+    let dir = temp("explore");
+    std::fs::create_dir_all(&dir).unwrap();
+    let env = dir.join("spiral.geojson");
+    let g = stopscan(&["generate", "spiral", "--size", "5", "-o", env.to_str().unwrap()]);
+    assert!(g.status.success());
+    let out = dir.join("run.json");
+    let v = json(&[
+        "explore",
+        "--env",
+        env.to_str().unwrap(),
+        "--out",
+        out.to_str().unwrap(),
+        "--svg",
+        dir.join("s.svg").to_str().unwrap(),
+        "--scan-time",
+        "2",
+        "--speed",
+        "0.5",
+    ]);
+    assert_eq!(v["metrics"]["scans"], 6, "a spiral with 5 turns needs r + 1 = 6 views");
+    assert_eq!(v["cost_model"]["scan_time"], 2.0);
+    // The offline optimum (integer programming) is r + 1 too: the algorithm is optimal here.
+    assert_eq!(v["bounds"]["optimum"], 6, "{}", v["bounds"]);
+    assert_eq!(v["bounds"]["competitive_ratio"], 1.0);
+    assert!((f(&v["metrics"], "scan_time_total") - 12.0).abs() < 1e-12);
+    assert!(dir.join("s.svg").exists() && out.exists());
+    // A folder: a sweep with every strategy, as CSV.
+    let csv_path = dir.join("sweep.csv");
+    let g2 = stopscan(&[
+        "generate",
+        "comb",
+        "--size",
+        "3",
+        "-o",
+        dir.join("comb.geojson").to_str().unwrap(),
+    ]);
+    assert!(g2.status.success());
+    std::fs::remove_file(dir.join("s.svg")).unwrap();
+    std::fs::remove_file(&out).unwrap();
+    let sweep = stopscan(&[
+        "explore",
+        "--env",
+        dir.to_str().unwrap(),
+        "--strategy",
+        "all",
+        "--out",
+        csv_path.to_str().unwrap(),
+    ]);
+    assert!(sweep.status.success(), "{}", String::from_utf8_lossy(&sweep.stderr));
+    let csv_text = std::fs::read_to_string(&csv_path).unwrap();
+    assert_eq!(
+        csv_text.lines().count(),
+        1 + 2 * stopscan::strategy::polygon::REGISTRY.len(),
+        "header + 2 environments × every strategy:\n{csv_text}"
+    );
+    assert!(csv_text.lines().next().unwrap().contains("scans_upper"));
+    let b = json(&["bench", "explore", "--n", "20"]);
+    assert_eq!(b["runs_failing_checks"], 0, "{b}");
+    assert_eq!(b["n"], 20);
+    let bad = stopscan(&["explore", "--env", env.to_str().unwrap(), "--strategy", "teleport"]);
+    assert_eq!(bad.status.code(), Some(2));
+    assert!(String::from_utf8_lossy(&bad.stderr).contains("unknown strategy"));
+    let bad = stopscan(&["explore", "--env", env.to_str().unwrap(), "--start", "1000,1000"]);
+    assert!(String::from_utf8_lossy(&bad.stderr).contains("outside the free space"));
+}
+
+/// A file of a sweep that does not load is a row with its error and a warning; the sweep
+/// goes on.
+#[test]
+fn a_bad_file_does_not_end_a_sweep() {
+    let dir = temp("sweep-bad");
+    std::fs::create_dir_all(dir.join("envs")).unwrap();
+    std::fs::write(dir.join("envs/a.wkt"), "POLYGON ((0 0, 10 0, 10 10, 0 10, 0 0))\n").unwrap();
+    std::fs::write(dir.join("envs/c.wkt"), "POLYGON ((0 0, 10 0, 0 0))\n").unwrap();
+    let csv_path = dir.join("sweep.csv");
+    let o = stopscan(&[
+        "explore",
+        "--env",
+        dir.join("envs").to_str().unwrap(),
+        "--out",
+        csv_path.to_str().unwrap(),
+    ]);
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    assert!(String::from_utf8_lossy(&o.stderr).contains("warning: c.wkt"));
+    let text = std::fs::read_to_string(&csv_path).unwrap();
+    let mut rows = csv::Reader::from_reader(text.as_bytes());
+    let header = rows.headers().unwrap().clone();
+    let err = header.iter().position(|h| h == "error").unwrap();
+    let rows: Vec<csv::StringRecord> = rows.records().map(Result::unwrap).collect();
+    assert_eq!(rows.len(), 2);
+    assert!(rows[0][0].starts_with("a.wkt") && rows[0][err].is_empty(), "{text}");
+    assert!(rows[1][0].starts_with("c.wkt") && rows[1][err].contains("ring 0"), "{text}");
+    fails(
+        &["explore", "--env", dir.join("envs").to_str().unwrap(), "--strategy", "range_limited"],
+        &["needs --range"],
+    );
+}

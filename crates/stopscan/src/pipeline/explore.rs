@@ -1,0 +1,318 @@
+//! One exploration of a polygon environment, as `stopscan explore --env FILE` and the main job
+//! run it: load the environment, run the strategy (streaming the event trace), compute the
+//! offline references, and build the run record and the scene.
+//!
+//! ```no_run
+//! use stopscan::pipeline::explore::{ExploreOptions, explore_file};
+//! let run = explore_file("office.geojson".as_ref(), None, &ExploreOptions::default(), &mut |_| {})?;
+//! println!("{} scans", run.record.metrics.scans);
+//! # Ok::<(), stopscan::pipeline::explore::ExploreError>(())
+//! ```
+
+use std::path::{Path, PathBuf};
+
+use super::{InvalidParameter, Progress};
+use crate::algorithm::visibility::VisibilityError;
+use crate::io::{Environment, LoadError};
+use crate::kernel::{Num, Point};
+use crate::offline::polygon::{OfflineError, ReferenceLimits};
+use crate::protocol::CostModel;
+use crate::protocol::polygon::PolygonObservation;
+use crate::run_record::RunRecord;
+use crate::sim::polygon::{PolygonSimError, Reframe};
+use crate::sim::{Fanout, JsonLinesTrace, Observer};
+use crate::strategy::UnknownStrategy;
+use crate::world::polygon::PolygonWorld;
+
+/// The built-in office floor of the main job (`stopscan generate office --size 6 --desks 16`),
+/// as GeoJSON with its start.
+pub const OFFICE_GEOJSON: &str = include_str!("../../../../fixtures/office.geojson");
+
+/// The longest budget a reference stage may be given: a day.
+pub const MAX_BUDGET_SECONDS: f64 = 86_400.0;
+
+/// How to explore (and, for [`super::sweep`], how to sweep: `seed` and `trace` are not used
+/// there, and `strategy` may be `all`).
+#[derive(Debug, Clone, PartialEq)]
+pub struct ExploreOptions {
+    /// The polygon registry's name of the strategy.
+    pub strategy: String,
+    /// The cost model every run is priced with.
+    pub cost: CostModel,
+    /// The sensor range (metres), if limited.
+    pub range: Option<f64>,
+    /// The budgets of the offline references.
+    pub limits: ReferenceLimits,
+    /// The seed recorded in the run record.
+    pub seed: u64,
+    /// Where to stream the event trace (JSON lines), if anywhere.
+    pub trace: Option<PathBuf>,
+}
+
+impl Default for ExploreOptions {
+    /// The paper's algorithm, the default cost model, an unlimited sensor, the default
+    /// budgets, seed 0, no trace.
+    fn default() -> Self {
+        Self {
+            strategy: "depth_first".into(),
+            cost: CostModel::default(),
+            range: None,
+            limits: ReferenceLimits::default(),
+            seed: 0,
+            trace: None,
+        }
+    }
+}
+
+/// A finished exploration (or one the simulator ended early, see `failure`).
+#[derive(Debug, Clone)]
+pub struct Exploration {
+    /// The run record (`error` set when the run was ended early).
+    pub record: RunRecord,
+    /// The scene: domain, regions seen, path and numbered scans, as SVG.
+    pub svg: String,
+    /// Why the run was ended before the strategy was done (in the input's coordinates); the
+    /// record is then the run so far, and not measured against the greedy reference or the
+    /// optimum.
+    pub failure: Option<PolygonSimError>,
+}
+
+/// Why an exploration (or a sweep) could not run.
+#[derive(Debug, thiserror::Error)]
+#[non_exhaustive]
+pub enum ExploreError {
+    /// The sensor range (`range`) is not a finite positive number of metres, or a reference
+    /// budget (`optimum_seconds`, `bounds_seconds`) is not between 0 and
+    /// [`MAX_BUDGET_SECONDS`].
+    #[error(transparent)]
+    Parameter(#[from] InvalidParameter),
+    /// `range_limited` was asked for without a range.
+    #[error(
+        "range_limited needs a sensor range (metres); for an unlimited range the paper's algorithm is depth_first"
+    )]
+    RangeNeeded,
+    /// The strategy is not in the registry (a sweep also accepts `all`).
+    #[error(transparent)]
+    Strategy(#[from] UnknownStrategy),
+    /// The start lies outside the free space (input coordinates).
+    #[error("the start ({}, {}) is outside the free space", Num(.0[0]), Num(.0[1]))]
+    StartOutside(Point),
+    /// The environment file does not load.
+    #[error(transparent)]
+    Load(#[from] LoadError),
+    /// The free space could not be preprocessed.
+    #[error(transparent)]
+    Visibility(#[from] VisibilityError),
+    /// An offline reference failed.
+    #[error(transparent)]
+    Offline(#[from] OfflineError),
+    /// The event trace could not be written.
+    #[error("cannot write {}", .path.display())]
+    Trace {
+        /// The trace file.
+        path: PathBuf,
+        /// The system error.
+        source: std::io::Error,
+    },
+    /// A sweep's folder could not be read.
+    #[error("cannot read {}", .path.display())]
+    ReadDir {
+        /// The folder.
+        path: PathBuf,
+        /// The system error.
+        source: std::io::Error,
+    },
+    /// A sweep's folder holds no environment file.
+    #[error("{} holds no environment files (.geojson, .wkt, .pol, .yaml, .txt)", .0.display())]
+    NoFiles(PathBuf),
+}
+
+/// The range is a finite positive distance, and `range_limited`, named explicitly, has one
+/// (the paper's algorithm for an unlimited sensor is `depth_first`).
+///
+/// # Errors
+/// [`ExploreError::Parameter`] (`range`) or [`ExploreError::RangeNeeded`].
+pub fn check_range(strategy: &str, range: Option<f64>) -> Result<(), ExploreError> {
+    if let Some(r) = range
+        && !(r.is_finite() && r > 0.0)
+    {
+        return Err(
+            InvalidParameter::new("range", "be a positive number of metres", &Num(r)).into()
+        );
+    }
+    if strategy == "range_limited" && range.is_none() {
+        return Err(ExploreError::RangeNeeded);
+    }
+    Ok(())
+}
+
+/// The reference budgets are between 0 and [`MAX_BUDGET_SECONDS`].
+///
+/// # Errors
+/// [`ExploreError::Parameter`] naming the first budget that is not.
+pub fn check_budgets(limits: &ReferenceLimits) -> Result<(), ExploreError> {
+    for (name, value) in
+        [("optimum_seconds", limits.optimum_seconds), ("bounds_seconds", limits.bounds_seconds)]
+    {
+        if !(value.is_finite() && (0.0..=MAX_BUDGET_SECONDS).contains(&value)) {
+            return Err(
+                InvalidParameter::new(name, "be between 0 and 86400 seconds", &value).into()
+            );
+        }
+    }
+    Ok(())
+}
+
+/// Explores the environment in `path` (any format [`crate::io::read_environment`] reads),
+/// from `start` (input coordinates) or the file's default start
+/// ([`crate::io::sweep::default_start`]). The run is named after the file's stem.
+///
+/// # Errors
+/// [`ExploreError`]: bad options, a file that does not load, a start outside the free space,
+/// a trace that cannot be written, or an offline reference that fails. A run the simulator
+/// ends early is not an error: see [`Exploration::failure`].
+pub fn explore_file(
+    path: &Path,
+    start: Option<Point>,
+    options: &ExploreOptions,
+    progress: Progress,
+) -> Result<Exploration, ExploreError> {
+    check_range(&options.strategy, options.range)?;
+    let env = crate::io::read_environment(path)?;
+    let start = match start {
+        Some(s) => env.frame.to_local(s),
+        None => crate::io::sweep::default_start(&env)?,
+    };
+    let name = path.file_stem().and_then(|s| s.to_str()).unwrap_or("environment");
+    explore(name, &env, start, options, progress)
+}
+
+/// The main job: the paper's algorithm on the built-in office floor ([`OFFICE_GEOJSON`]),
+/// with the exact optimum left out (the office's 164 vertices are beyond what it proves
+/// within a few seconds, and a search cut short by the clock would make the result depend on
+/// the machine).
+///
+/// # Errors
+/// As [`explore`].
+pub fn office(seed: u64, progress: Progress) -> Result<Exploration, ExploreError> {
+    let env = crate::io::text_formats::parse_geojson(OFFICE_GEOJSON, "built-in office floor")?;
+    let start = crate::io::sweep::default_start(&env)?;
+    let options = ExploreOptions {
+        limits: ReferenceLimits { optimum_max_vertices: 100, ..ReferenceLimits::default() },
+        seed,
+        ..ExploreOptions::default()
+    };
+    explore("office (built-in)", &env, start, &options, progress)
+}
+
+/// Counts scans and metres for the progress line.
+struct Counter<'a, 'p> {
+    progress: &'a mut Progress<'p>,
+    scans: u64,
+    metres: f64,
+}
+
+impl<O> Observer<Point, O> for Counter<'_, '_> {
+    fn on_move(&mut self, _robot: usize, _to: &Point, metres: f64) -> std::ops::ControlFlow<()> {
+        self.metres += metres;
+        std::ops::ControlFlow::Continue(())
+    }
+    fn on_scan(&mut self, _robot: usize, _at: &Point, _o: &O) -> std::ops::ControlFlow<()> {
+        self.scans += 1;
+        (self.progress)(&format!("{} scans, {:.1} m", self.scans, self.metres));
+        std::ops::ControlFlow::Continue(())
+    }
+}
+
+/// Explores `env` from `start` (local frame) and measures the run: the run record (in the
+/// input's coordinates), the scene, and the event trace streamed to `options.trace`.
+/// `progress` hears the scans and metres so far, then the offline stage being computed.
+///
+/// # Errors
+/// As [`explore_file`].
+pub fn explore(
+    name: &str,
+    env: &Environment,
+    start: Point,
+    options: &ExploreOptions,
+    mut progress: Progress,
+) -> Result<Exploration, ExploreError> {
+    let o = options;
+    check_range(&o.strategy, o.range)?;
+    check_budgets(&o.limits)?;
+    let mut strategy = crate::strategy::polygon::build(&o.strategy, &o.cost)?;
+    let frame = env.frame;
+    let world = PolygonWorld::with_range(env.domain.clone(), o.range)?;
+    if world.scan(start).is_err() {
+        return Err(ExploreError::StartOutside(frame.to_input(start)));
+    }
+    let mut counter = Counter { progress: &mut progress, scans: 0, metres: 0.0 };
+    let result = match &o.trace {
+        None => crate::sim::polygon::run(&world, start, &o.cost, strategy.as_mut(), &mut counter),
+        Some(path) => {
+            let cannot = |source| ExploreError::Trace { path: path.clone(), source };
+            let file = std::fs::File::create(path).map_err(cannot)?;
+            let mut trace = JsonLinesTrace::new(std::io::BufWriter::new(file));
+            let result = {
+                let mut reframed = Reframe { inner: &mut trace, frame };
+                let observers: Vec<&mut dyn Observer<Point, PolygonObservation>> =
+                    vec![&mut reframed, &mut counter];
+                let mut all = Fanout(observers);
+                crate::sim::polygon::run(&world, start, &o.cost, strategy.as_mut(), &mut all)
+            };
+            if let Some(e) = trace.error {
+                return Err(cannot(e));
+            }
+            result
+        }
+    };
+    let (run, failure) = match result {
+        Ok(run) => (run, None),
+        Err(e) => (*e.partial, Some(e.error.map_places(|p| frame.to_input(p)))),
+    };
+    // A run cut short is not measured against the offline references (they take time, and a
+    // ratio of an unfinished run means nothing); its record says why it ended.
+    let limits = if failure.is_some() { ReferenceLimits::BOUNDS_ONLY } else { o.limits };
+    let refs = crate::offline::polygon::references(
+        world.visibility(),
+        start,
+        o.range,
+        limits,
+        &mut |stage| progress(&format!("offline: {stage}")),
+    )?;
+    let regions: Vec<_> = run.scans.iter().map(|s| s.region.clone()).collect();
+    let svg = crate::render::exploration_svg(&env.domain, &regions, &run.path);
+    let mut record = RunRecord::polygon(name, &world, &o.strategy, &o.cost, &run, &refs, o.seed)
+        .in_frame(&frame);
+    record.error = failure.as_ref().map(ToString::to_string);
+    Ok(Exploration { record, svg, failure })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn options_are_checked_before_any_work() {
+        let o = ExploreOptions { range: Some(-1.0), ..ExploreOptions::default() };
+        let e = explore_file(Path::new("/no/such/file"), None, &o, &mut |_| {}).unwrap_err();
+        assert_eq!(e.to_string(), "range must be a positive number of metres, got -1");
+        let o = ExploreOptions { strategy: "range_limited".into(), ..ExploreOptions::default() };
+        let e = explore_file(Path::new("/no/such/file"), None, &o, &mut |_| {}).unwrap_err();
+        assert!(matches!(e, ExploreError::RangeNeeded), "{e}");
+        let limits = ReferenceLimits { bounds_seconds: f64::NAN, ..ReferenceLimits::default() };
+        let e = check_budgets(&limits).unwrap_err().to_string();
+        assert_eq!(e, "bounds_seconds must be between 0 and 86400 seconds, got NaN");
+    }
+
+    #[test]
+    fn a_start_outside_is_an_error_in_input_coordinates() {
+        let env = crate::io::text_formats::parse_geojson(OFFICE_GEOJSON, "office").unwrap();
+        let e = explore("office", &env, [-1e3, -1e3], &ExploreOptions::default(), &mut |_| {})
+            .unwrap_err();
+        assert_eq!(e.to_string(), "the start (-1000, -1000) is outside the free space");
+        let o = ExploreOptions { strategy: "warp".into(), ..ExploreOptions::default() };
+        let e = explore("office", &env, [0.0, 0.0], &o, &mut |_| {}).unwrap_err();
+        assert!(matches!(e, ExploreError::Strategy(_)), "{e}");
+    }
+}

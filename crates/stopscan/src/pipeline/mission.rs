@@ -1,0 +1,548 @@
+//! A region-of-interest mission as `stopscan roi` flies it: a team explores a region
+//! (Algorithm 1, optionally with the field pipeline's camera, lawn-mowing search and battery),
+//! writing its whole state to a file as it goes so that it can be resumed after a crash, and
+//! ending with the run record and the SVG replay.
+//!
+//! The state file (format [`MISSION_FORMAT`]) holds where the region comes from, the drift,
+//! the sensor, the seed, the output paths, the event trace and its length, and the mission
+//! itself ([`Mission`]). A resumed mission ends with the same record, and the same trace, as
+//! an uninterrupted one.
+
+use std::cell::Cell as Shared;
+use std::io::Write;
+use std::path::{Path, PathBuf};
+use std::rc::Rc;
+use std::time::{Duration, Instant};
+
+use serde::{Deserialize, Serialize};
+
+use super::Progress;
+use crate::io::LoadError;
+use crate::io::atomic::{self, WriteError};
+use crate::io::grid::GridOptions;
+use crate::protocol::CostModel;
+use crate::protocol::grid::Cell;
+use crate::run_record::GridRunRecord;
+use crate::sim::grid::{Mission, MissionError, MissionPlan, Search};
+use crate::sim::{Flow, JsonLinesTrace, NoObserver, Recording, SimError};
+use crate::world::grid::{Drift, GridRoi, GridSensor, GridWorld, InvalidRoi};
+
+/// The state file's format. `/2`: the trace and its length are recorded; a search's lawn is
+/// computed, not listed.
+pub const MISSION_FORMAT: &str = "stopscan-mission/2";
+
+/// Where the region comes from, so that a resumed mission rebuilds the same world.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(tag = "kind", rename_all = "snake_case")]
+pub enum RegionSource {
+    /// `GridRoi::random(cells, seed)` with cells of `cell_size` metres.
+    Random {
+        /// Cells.
+        cells: usize,
+        /// The seed it is grown from.
+        seed: u64,
+        /// The side of a cell, metres.
+        cell_size: f64,
+    },
+    /// A file (text grid, mask or polygon), read with [`crate::io::grid::read_roi`].
+    File {
+        /// The file (absolute).
+        path: PathBuf,
+        /// The side of a cell, metres.
+        cell_size: f64,
+        /// Pixels per cell side, for masks.
+        cell_px: usize,
+        /// The start cell, for masks and text grids without `S`.
+        start: Option<Cell>,
+        /// For masks: the region is dark.
+        invert: bool,
+    },
+}
+
+impl RegionSource {
+    /// The region.
+    ///
+    /// # Errors
+    /// [`MissionRunError`]: the file does not load, or the region is invalid.
+    pub fn load(&self) -> Result<GridRoi, MissionRunError> {
+        Ok(match self {
+            Self::Random { cells, seed, cell_size } => {
+                GridRoi::random(*cells, *seed)?.with_cell_size(*cell_size)?
+            }
+            Self::File { path, cell_size, cell_px, start, invert } => {
+                let opts = GridOptions {
+                    cell_size: *cell_size,
+                    cell_px: *cell_px,
+                    start: *start,
+                    invert: *invert,
+                };
+                crate::io::grid::read_roi(path, &opts)?
+            }
+        })
+    }
+}
+
+/// Everything a resumed mission needs: the state file. Paths are absolute, so that a mission
+/// resumes from any directory.
+#[derive(Debug, Clone, Serialize, Deserialize)]
+pub struct MissionState {
+    /// [`MISSION_FORMAT`].
+    pub format: String,
+    /// Where the region comes from.
+    pub source: RegionSource,
+    /// The region's drift.
+    pub drift: Drift,
+    /// The sensor.
+    pub sensor: GridSensor,
+    /// The world's seed.
+    pub seed: u64,
+    /// Where the run record goes.
+    pub out: PathBuf,
+    /// Where the SVG replay goes.
+    pub svg: PathBuf,
+    /// The event trace, if the mission writes one.
+    pub trace: Option<PathBuf>,
+    /// The trace's length in bytes when this state was taken: a resumed mission cuts the
+    /// trace back to it, so that the events after the state are not written twice.
+    pub trace_len: u64,
+    /// The mission.
+    pub mission: Mission,
+}
+
+/// What a fresh mission is made of.
+#[derive(Debug, Clone, PartialEq)]
+pub struct MissionSpec {
+    /// Where the region comes from.
+    pub source: RegionSource,
+    /// The region's drift.
+    pub drift: Drift,
+    /// The sensor.
+    pub sensor: GridSensor,
+    /// R, the number of robots.
+    pub robots: usize,
+    /// Scan time, per-move time and the robots' speed.
+    pub cost: CostModel,
+    /// Flight seconds per battery (`None`: unlimited).
+    pub battery_s: Option<f64>,
+    /// A lawn-mowing search first.
+    pub search: Option<Search>,
+    /// What the run record keeps of each robot.
+    pub recording: Recording,
+    /// The world's seed.
+    pub seed: u64,
+    /// Where the run record goes.
+    pub out: PathBuf,
+    /// Where the SVG replay goes.
+    pub svg: PathBuf,
+    /// Where the event trace goes, if anywhere.
+    pub trace: Option<PathBuf>,
+}
+
+/// Why a mission could not be started, carried on or recorded.
+#[derive(Debug, thiserror::Error)]
+#[non_exhaustive]
+pub enum MissionRunError {
+    /// The region's file does not load.
+    #[error(transparent)]
+    Load(#[from] LoadError),
+    /// The region is invalid.
+    #[error(transparent)]
+    Roi(#[from] InvalidRoi),
+    /// The mission cannot start.
+    #[error(transparent)]
+    Mission(#[from] MissionError),
+    /// A strategy asked for something the world refuses.
+    #[error(transparent)]
+    Sim(#[from] SimError<Cell>),
+    /// The mission did not finish within [`Mission::step_limit`] steps.
+    #[error("the mission did not finish within {0} steps")]
+    StepLimit(u64),
+    /// The state file cannot be read.
+    #[error("cannot read {}", .path.display())]
+    ReadState {
+        /// The file.
+        path: PathBuf,
+        /// The system error.
+        source: std::io::Error,
+    },
+    /// The state file is not a mission state.
+    #[error("{}:{}:{}: not a mission state: {source}", .path.display(), .source.line(), .source.column())]
+    NotAState {
+        /// The file.
+        path: PathBuf,
+        /// Where and why it does not parse.
+        source: serde_json::Error,
+    },
+    /// The state file has another format.
+    #[error("{}: format {found:?}, expected {MISSION_FORMAT:?}", .path.display())]
+    Format {
+        /// The file.
+        path: PathBuf,
+        /// Its format.
+        found: String,
+    },
+    /// The event trace cannot be written.
+    #[error("cannot write {}", .path.display())]
+    Trace {
+        /// The trace file.
+        path: PathBuf,
+        /// The system error.
+        source: std::io::Error,
+    },
+    /// The trace is shorter than the state recorded: it was changed since.
+    #[error(
+        "{}: the trace has {len} bytes, fewer than the {keep} the mission state recorded; it was changed since (give --trace NEW to start a new one)",
+        .path.display()
+    )]
+    TraceShrunk {
+        /// The trace file.
+        path: PathBuf,
+        /// Its length.
+        len: u64,
+        /// The length the state recorded.
+        keep: u64,
+    },
+    /// An output could not be written.
+    #[error(transparent)]
+    Write(#[from] WriteError),
+}
+
+/// `p` made absolute (as it is if that fails).
+fn absolute(p: &Path) -> PathBuf {
+    std::path::absolute(p).unwrap_or_else(|_| p.to_path_buf())
+}
+
+/// The world of a mission: rebuilt from the same region, drift, sensor and seed.
+fn world_of(roi: GridRoi, drift: Drift, sensor: GridSensor, seed: u64, search: bool) -> GridWorld {
+    if search {
+        GridWorld::without_root(roi, drift, sensor, seed)
+    } else {
+        GridWorld::new(roi, drift, sensor, seed)
+    }
+}
+
+impl MissionState {
+    /// Reads a state file.
+    ///
+    /// # Errors
+    /// [`MissionRunError::ReadState`], [`MissionRunError::NotAState`] (with the line and
+    /// column) or [`MissionRunError::Format`].
+    pub fn read(path: &Path) -> Result<Self, MissionRunError> {
+        let text = std::fs::read_to_string(path)
+            .map_err(|source| MissionRunError::ReadState { path: path.to_path_buf(), source })?;
+        let m: Self = serde_json::from_str(&text)
+            .map_err(|source| MissionRunError::NotAState { path: path.to_path_buf(), source })?;
+        if m.format != MISSION_FORMAT {
+            return Err(MissionRunError::Format { path: path.to_path_buf(), found: m.format });
+        }
+        Ok(m)
+    }
+
+    /// Writes the state file atomically (a crash leaves the previous state or this one).
+    ///
+    /// # Errors
+    /// [`WriteError`] naming the file.
+    pub fn write(&self, path: &Path) -> Result<(), WriteError> {
+        atomic::write(path, |w| serde_json::to_writer(w, self).map_err(std::io::Error::from))
+    }
+
+    /// Sends a resumed mission's outputs elsewhere: `out` (and the replay beside it, with
+    /// `.svg`, unless `svg` is given), `svg`; a `trace` other than the recorded one replaces it
+    /// and starts empty. Both outputs are checked ([`atomic::check_file`]).
+    ///
+    /// # Errors
+    /// [`WriteError`] for an output that cannot be written.
+    pub fn redirect(
+        &mut self,
+        out: Option<&Path>,
+        svg: Option<&Path>,
+        trace: Option<&Path>,
+    ) -> Result<(), WriteError> {
+        if let Some(o) = out {
+            self.out = absolute(o);
+            self.svg = absolute(&svg.map_or_else(|| o.with_extension("svg"), Path::to_path_buf));
+        } else if let Some(s) = svg {
+            self.svg = absolute(s);
+        }
+        atomic::check_file(&self.out)?;
+        atomic::check_file(&self.svg)?;
+        if let Some(t) = trace {
+            let t = absolute(t);
+            if self.trace.as_ref() != Some(&t) {
+                self.trace = Some(t);
+                self.trace_len = 0;
+            }
+        }
+        Ok(())
+    }
+
+    /// The mission ready to carry on: its world rebuilt and its records restored.
+    ///
+    /// # Errors
+    /// [`MissionRunError`] if the region no longer loads.
+    pub fn resume(self) -> Result<MissionRun, MissionRunError> {
+        let roi = self.source.load()?;
+        let search = self.mission.plan.search.is_some();
+        let mut world = world_of(roi, self.drift, self.sensor.clone(), self.seed, search);
+        if self.mission.team.steps > 0 {
+            world = self.mission.restore(world);
+        }
+        Ok(MissionRun { state: self, world })
+    }
+}
+
+/// A mission and its world, ready to fly.
+#[derive(Debug)]
+pub struct MissionRun {
+    /// The state (written to the state file as the mission goes).
+    pub state: MissionState,
+    /// The world.
+    pub world: GridWorld,
+}
+
+/// How a mission ended: the run record (written to `out`, the replay to `svg`).
+#[derive(Debug, Clone)]
+pub struct MissionOutcome {
+    /// The run record; `failures` is not empty when robots gave up.
+    pub record: GridRunRecord,
+    /// Where the record was written.
+    pub out: PathBuf,
+    /// Where the replay was written.
+    pub svg: PathBuf,
+}
+
+/// Counts the bytes written through it (the trace's length, for the state file).
+struct Counting<W> {
+    inner: W,
+    bytes: Rc<Shared<u64>>,
+}
+
+impl<W: Write> Write for Counting<W> {
+    fn write(&mut self, buf: &[u8]) -> std::io::Result<usize> {
+        let n = self.inner.write(buf)?;
+        self.bytes.set(self.bytes.get() + n as u64);
+        Ok(n)
+    }
+    fn flush(&mut self) -> std::io::Result<()> {
+        self.inner.flush()
+    }
+}
+
+/// Opens the trace: a fresh mission (or a new file given on resume) starts it empty; a
+/// resumed one cuts its own trace back to the length recorded with the state and appends.
+fn open_trace(path: &Path, keep: u64) -> Result<std::fs::File, MissionRunError> {
+    let cannot = |source| MissionRunError::Trace { path: path.to_path_buf(), source };
+    let mut f = std::fs::OpenOptions::new()
+        .create(true)
+        .truncate(false)
+        .read(true)
+        .write(true)
+        .open(path)
+        .map_err(cannot)?;
+    let len = f.metadata().map_err(cannot)?.len();
+    if len < keep {
+        return Err(MissionRunError::TraceShrunk { path: path.to_path_buf(), len, keep });
+    }
+    f.set_len(keep).map_err(cannot)?;
+    std::io::Seek::seek(&mut f, std::io::SeekFrom::End(0)).map_err(cannot)?;
+    Ok(f)
+}
+
+impl MissionRun {
+    /// A fresh mission from `spec` in the region `roi` (loaded from `spec.source`). The
+    /// mission builds a map when it has a camera, a search or a region from a file (whose
+    /// true shape the map is compared with). Paths are made absolute.
+    ///
+    /// # Errors
+    /// [`MissionRunError::Mission`] for a plan the mission refuses.
+    pub fn start(spec: MissionSpec, roi: GridRoi) -> Result<Self, MissionRunError> {
+        let map = matches!(spec.sensor, GridSensor::Camera(_))
+            || spec.search.is_some()
+            || matches!(spec.source, RegionSource::File { .. });
+        let plan = MissionPlan {
+            robots: spec.robots,
+            cost: spec.cost,
+            battery_s: spec.battery_s,
+            search: spec.search,
+            map,
+        };
+        let world =
+            world_of(roi, spec.drift, spec.sensor.clone(), spec.seed, spec.search.is_some());
+        let mission = Mission::new(&world, plan, spec.recording)?;
+        let state = MissionState {
+            format: MISSION_FORMAT.into(),
+            source: spec.source,
+            drift: spec.drift,
+            sensor: spec.sensor,
+            seed: spec.seed,
+            out: absolute(&spec.out),
+            svg: absolute(&spec.svg),
+            trace: spec.trace.as_deref().map(absolute),
+            trace_len: 0,
+            mission,
+        };
+        Ok(Self { state, world })
+    }
+
+    /// Flies the mission to its end: the trace is streamed as it goes, the state is written to
+    /// `save` (if given) at most once per `interval` of wall clock and at the end, and the run
+    /// record and the replay are written to the state's `out` and `svg`. `progress` hears the
+    /// steps and the mission time every 256 steps. Every step's state is consistent, so a
+    /// resume from any of them ends with the same record.
+    ///
+    /// # Errors
+    /// [`MissionRunError`]: a strategy misbehaves, the mission exceeds its step limit, or an
+    /// output cannot be written. Robots that give up are not an error: see the record's
+    /// `failures`.
+    pub fn fly(
+        mut self,
+        save: Option<&Path>,
+        interval: Duration,
+        progress: Progress,
+    ) -> Result<MissionOutcome, MissionRunError> {
+        let (file, world) = (&mut self.state, &mut self.world);
+        let bytes = Rc::new(Shared::new(file.trace_len));
+        let mut trace = match &file.trace {
+            Some(p) => {
+                let f = open_trace(p, file.trace_len)?;
+                let out = Counting { inner: std::io::BufWriter::new(f), bytes: bytes.clone() };
+                Some(JsonLinesTrace::new(out))
+            }
+            None => None,
+        };
+        let limit = file.mission.step_limit(world);
+        let mut last_write: Option<Instant> = None;
+        loop {
+            if file.mission.team.steps >= limit {
+                return Err(MissionRunError::StepLimit(limit));
+            }
+            let flow = match trace.as_mut() {
+                Some(t) => file.mission.step(world, t)?,
+                None => file.mission.step(world, &mut NoObserver)?,
+            };
+            if let Some(source) = trace.as_mut().and_then(|t| t.error.take()) {
+                let path = file.trace.clone().unwrap_or_else(|| PathBuf::from("trace"));
+                return Err(MissionRunError::Trace { path, source });
+            }
+            // The state, at most once per interval and at the end: each write costs time in
+            // proportion to the mission.
+            let done = flow != Flow::Continue;
+            if let Some(p) = save
+                && (done || last_write.is_none_or(|t| t.elapsed() >= interval))
+            {
+                file.mission.snapshot(world);
+                file.trace_len = bytes.get();
+                file.write(p)?;
+                last_write = Some(Instant::now());
+            }
+            if file.mission.team.steps % 256 == 0 {
+                progress(&format!(
+                    "{} steps, {:.1} s of mission",
+                    file.mission.team.steps,
+                    file.mission.team.makespan()
+                ));
+            }
+            if done {
+                break;
+            }
+        }
+        let record = GridRunRecord::new(world, &file.mission, file.seed);
+        atomic::write_json(&file.out, &record)?;
+        let mapped = file.mission.plan.map.then(|| file.mission.marks.positive());
+        let svg = crate::render::roi_svg(world.roi(), mapped.as_deref(), &record);
+        atomic::write_bytes(&file.svg, svg.as_bytes())?;
+        Ok(MissionOutcome { record, out: file.out.clone(), svg: file.svg.clone() })
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn temp(name: &str) -> PathBuf {
+        let dir =
+            std::env::temp_dir().join(format!("stopscan-mission-{}-{name}", std::process::id()));
+        let _ = std::fs::remove_dir_all(&dir);
+        std::fs::create_dir_all(&dir).unwrap();
+        dir
+    }
+
+    fn spec(dir: &Path) -> MissionSpec {
+        MissionSpec {
+            source: RegionSource::Random { cells: 300, seed: 3, cell_size: 1.0 },
+            drift: Drift::default(),
+            sensor: GridSensor::Ideal,
+            robots: 3,
+            cost: CostModel::new(0.0, 0.0, 1.0).unwrap(),
+            battery_s: None,
+            search: None,
+            recording: Recording::PATHS,
+            seed: 3,
+            out: dir.join("run.json"),
+            svg: dir.join("run.svg"),
+            trace: Some(dir.join("events.jsonl")),
+        }
+    }
+
+    #[test]
+    fn a_mission_resumed_from_a_midway_state_ends_with_the_same_record_and_trace() {
+        let dir = temp("resume");
+        let whole = {
+            let s = spec(&dir);
+            let roi = s.source.load().unwrap();
+            MissionRun::start(s, roi).unwrap().fly(None, Duration::ZERO, &mut |_| {}).unwrap()
+        };
+        let trace = std::fs::read(dir.join("events.jsonl")).unwrap();
+        // Fly again, stopping after 40 steps with the state written.
+        let s = spec(&dir);
+        let roi = s.source.load().unwrap();
+        let mut run = MissionRun::start(s, roi).unwrap();
+        std::fs::write(dir.join("events.jsonl"), b"").unwrap();
+        let state = dir.join("state.json");
+        {
+            let f = open_trace(&dir.join("events.jsonl"), 0).unwrap();
+            let bytes = Rc::new(Shared::new(0));
+            let out = Counting { inner: std::io::BufWriter::new(f), bytes: bytes.clone() };
+            let mut t = JsonLinesTrace::new(out);
+            for _ in 0..40 {
+                run.state.mission.step(&mut run.world, &mut t).unwrap();
+            }
+            drop(t);
+            run.state.mission.snapshot(&run.world);
+            run.state.trace_len = bytes.get();
+            run.state.write(&state).unwrap();
+        }
+        // Events after the state are cut off on resume.
+        std::fs::OpenOptions::new()
+            .append(true)
+            .open(dir.join("events.jsonl"))
+            .unwrap()
+            .write_all(b"{\"lost\":1}\n")
+            .unwrap();
+        let resumed = MissionState::read(&state).unwrap().resume().unwrap();
+        assert!(resumed.state.mission.team.steps == 40);
+        let end = resumed.fly(Some(&state), Duration::ZERO, &mut |_| {}).unwrap();
+        assert_eq!(end.record, whole.record);
+        assert_eq!(std::fs::read(dir.join("events.jsonl")).unwrap(), trace);
+    }
+
+    #[test]
+    fn a_state_of_another_format_is_refused() {
+        let dir = temp("format");
+        let s = spec(&dir);
+        let roi = s.source.load().unwrap();
+        let mut run = MissionRun::start(s, roi).unwrap();
+        run.state.mission.step(&mut run.world, &mut NoObserver).unwrap();
+        run.state.format = "stopscan-mission/1".into();
+        let path = dir.join("old.json");
+        run.state.write(&path).unwrap();
+        let e = MissionState::read(&path).unwrap_err().to_string();
+        assert!(
+            e.ends_with("format \"stopscan-mission/1\", expected \"stopscan-mission/2\""),
+            "{e}"
+        );
+        std::fs::write(&path, "{\"format\": 3").unwrap();
+        let e = MissionState::read(&path).unwrap_err().to_string();
+        assert!(e.contains(":1:") && e.contains("not a mission state"), "{e}");
+    }
+}

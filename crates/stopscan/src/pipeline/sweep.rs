@@ -1,0 +1,178 @@
+//! Every environment file of a folder explored with one or every polygon strategy, in
+//! parallel (`stopscan explore --env DIR`). A file that does not load does not end the sweep:
+//! it is reported as a warning, and it gets one row per strategy with its error.
+
+use std::path::{Path, PathBuf};
+
+use super::explore::{ExploreError, ExploreOptions, check_budgets, check_range};
+use crate::experiment::polygon::{SweepInput, SweepRow};
+use crate::strategy::UnknownStrategy;
+use crate::strategy::polygon::REGISTRY;
+
+/// The extensions of the files a sweep reads (other files in the folder are left alone).
+pub const EXTENSIONS: &[&str] = &["geojson", "json", "wkt", "pol", "yaml", "yml", "txt"];
+
+/// Something the caller should tell the user; the sweep goes on.
+#[derive(Debug, Clone, PartialEq, thiserror::Error)]
+#[non_exhaustive]
+pub enum SweepWarning {
+    /// `range_limited` runs without a range (it then explores like the unlimited algorithm).
+    #[error("range_limited runs with unlimited range (no --range)")]
+    UnlimitedRange,
+    /// A file did not load: its rows carry the error.
+    #[error("{file}: not swept: {error}")]
+    NotSwept {
+        /// The file's name.
+        file: String,
+        /// Why, with its causes ([`super::error_message`]).
+        error: String,
+    },
+}
+
+/// What a sweep tells its caller as it goes (from several threads: the callback is `Sync`).
+#[derive(Debug, Clone, Copy, PartialEq)]
+#[non_exhaustive]
+pub enum SweepEvent<'a> {
+    /// A warning, before the runs start.
+    Warning(&'a SweepWarning),
+    /// The runs start: this many (files that loaded times strategies).
+    Started {
+        /// The number of runs.
+        runs: u64,
+    },
+    /// One run finished.
+    RunDone,
+}
+
+/// The environment files of `dir` (one level, by [`EXTENSIONS`]), sorted by path.
+///
+/// # Errors
+/// [`ExploreError::ReadDir`] or, for a folder without any, [`ExploreError::NoFiles`].
+pub fn environment_files(dir: &Path) -> Result<Vec<PathBuf>, ExploreError> {
+    let mut files: Vec<PathBuf> = std::fs::read_dir(dir)
+        .map_err(|source| ExploreError::ReadDir { path: dir.to_path_buf(), source })?
+        .flatten()
+        .map(|e| e.path())
+        .filter(|p| p.extension().and_then(|x| x.to_str()).is_some_and(|x| EXTENSIONS.contains(&x)))
+        .collect();
+    files.sort();
+    if files.is_empty() {
+        return Err(ExploreError::NoFiles(dir.to_path_buf()));
+    }
+    Ok(files)
+}
+
+/// The strategies `name` stands for: every registered one for `all`, else the one.
+///
+/// # Errors
+/// [`ExploreError::Strategy`] for an unknown name (the message offers `all` too).
+pub fn strategies(name: &str) -> Result<Vec<&'static str>, ExploreError> {
+    if name == "all" {
+        return Ok(REGISTRY.names().collect());
+    }
+    match REGISTRY.get(name) {
+        Ok(e) => Ok(vec![e.name]),
+        Err(e) => Err(UnknownStrategy { known: format!("{}, or all", e.known), ..e }.into()),
+    }
+}
+
+/// The name a file's rows carry: its file name.
+fn file_name(path: &Path) -> String {
+    path.file_name().and_then(|n| n.to_str()).unwrap_or("?").to_string()
+}
+
+/// Explores every environment file of `dir` ([`environment_files`]) with `options.strategy`
+/// (or `all`), in parallel; rows come back in file order, strategies in registry order,
+/// whatever the thread count. Each file's lower bounds are computed once, within
+/// `options.limits.bounds_seconds`; `options.seed` and `options.trace` are not used.
+///
+/// # Errors
+/// [`ExploreError`] for a folder that cannot be read or holds no environment file, an unknown
+/// strategy, or bad options. Files that do not load are not errors ([`SweepWarning`]).
+pub fn sweep_dir(
+    dir: &Path,
+    options: &ExploreOptions,
+    on: &(dyn Fn(SweepEvent) + Sync),
+) -> Result<Vec<SweepRow>, ExploreError> {
+    let files = environment_files(dir)?;
+    let strategies = strategies(&options.strategy)?;
+    check_range(&options.strategy, options.range)?;
+    if options.range.is_none() && strategies.contains(&"range_limited") {
+        on(SweepEvent::Warning(&SweepWarning::UnlimitedRange));
+    }
+    check_budgets(&options.limits)?;
+    // Indices into the inputs for the files that loaded, their errors for the others.
+    let mut inputs: Vec<SweepInput> = Vec::new();
+    let mut loaded: Vec<Result<usize, String>> = Vec::new();
+    for f in &files {
+        let name = file_name(f);
+        match crate::io::sweep::read_with_start(f) {
+            Ok((env, start)) => {
+                loaded.push(Ok(inputs.len()));
+                inputs.push((name, env.domain, start));
+            }
+            Err(e) => {
+                let error = super::error_message(&e);
+                on(SweepEvent::Warning(&SweepWarning::NotSwept {
+                    file: name,
+                    error: error.clone(),
+                }));
+                loaded.push(Err(error));
+            }
+        }
+    }
+    on(SweepEvent::Started { runs: (inputs.len() * strategies.len()) as u64 });
+    let swept = crate::experiment::polygon::sweep(
+        &inputs,
+        &strategies,
+        &options.cost,
+        options.range,
+        options.limits.bounds_seconds,
+        &|| on(SweepEvent::RunDone),
+    );
+    // Rows in file order; a file that did not load has one row per strategy with its error.
+    let k = strategies.len();
+    let mut rows = Vec::new();
+    for (f, l) in files.iter().zip(&loaded) {
+        match l {
+            Ok(i) => rows.extend_from_slice(&swept[i * k..(i + 1) * k]),
+            Err(e) => {
+                let name = file_name(f);
+                rows.extend(strategies.iter().map(|s| SweepRow::failed(&name, s, e.clone())));
+            }
+        }
+    }
+    Ok(rows)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn a_file_that_does_not_load_is_a_warning_and_rows_with_its_error() {
+        let dir = std::env::temp_dir().join(format!("stopscan-sweep-{}", std::process::id()));
+        let _ = std::fs::remove_dir_all(&dir);
+        std::fs::create_dir_all(&dir).unwrap();
+        std::fs::write(dir.join("a.wkt"), "POLYGON ((0 0, 4 0, 4 4, 0 4, 0 0))\n").unwrap();
+        std::fs::write(dir.join("b.wkt"), "POLYGON ((0 0, 4 0\n").unwrap();
+        std::fs::write(dir.join("notes.md"), "not an environment").unwrap();
+        let warnings = std::sync::Mutex::new(Vec::new());
+        let options = ExploreOptions { strategy: "all".into(), ..ExploreOptions::default() };
+        let rows = sweep_dir(&dir, &options, &|e| {
+            if let SweepEvent::Warning(w) = e {
+                warnings.lock().unwrap().push(w.to_string());
+            }
+        })
+        .unwrap();
+        let n = REGISTRY.len();
+        assert_eq!(rows.len(), 2 * n);
+        assert!(rows[..n].iter().all(|r| r.environment == "a.wkt" && r.error.is_empty()));
+        assert!(rows[n..].iter().all(|r| r.environment == "b.wkt" && !r.error.is_empty()));
+        let warnings = warnings.into_inner().unwrap();
+        assert_eq!(warnings[0], "range_limited runs with unlimited range (no --range)");
+        assert!(warnings[1].starts_with("b.wkt: not swept: "), "{warnings:?}");
+        let e = strategies("warp").unwrap_err().to_string();
+        assert!(e.ends_with("range_limited, or all"), "{e}");
+    }
+}
