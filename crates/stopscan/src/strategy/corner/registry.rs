@@ -2,8 +2,8 @@
 
 use serde::{Deserialize, Serialize};
 
-use super::mdp::{CornerMdp, Memory, Reading};
-use super::{ExprecReading, StopList, circle, exprec, unirec};
+use super::mdp::{CornerMdp, CornerMdpError, Memory, Reading};
+use super::{ExprecReading, InvalidStopList, StopList, circle, exprec, unirec};
 use crate::protocol::corner::{AngleDistribution, CornerSetup, LastStep, Route};
 
 /// `(name, one-line summary)` of every corner strategy, in display order.
@@ -59,9 +59,12 @@ pub enum BuildError {
     /// The name is not in the registry; the message lists the names.
     #[error("unknown strategy {0:?}; use one of: {1}")]
     Unknown(String, String),
-    /// The strategy rejected its parameters.
-    #[error("{0}")]
-    Invalid(String),
+    /// UNIREC or EXPREC rejected δ or the last-step reading.
+    #[error(transparent)]
+    StopList(#[from] InvalidStopList),
+    /// An MDP policy could not be built or solved.
+    #[error(transparent)]
+    Mdp(#[from] CornerMdpError),
 }
 
 /// Builds the stop list of the strategy called `name` for a setup and a belief (the
@@ -75,7 +78,6 @@ pub fn build(
     belief: &AngleDistribution,
     o: &BuildOptions,
 ) -> Result<StopList, BuildError> {
-    let invalid = |e: &dyn std::fmt::Display| BuildError::Invalid(e.to_string());
     let delta = setup.delta();
     let mdp = |memory| {
         CornerMdp {
@@ -87,11 +89,11 @@ pub fn build(
         }
         .solve()
         .map(|p| p.stop_list)
-        .map_err(|e| invalid(&e))
+        .map_err(BuildError::from)
     };
     match name {
-        "unirec" => unirec(delta, o.route, o.last_step).map_err(|e| invalid(&e)),
-        "exprec" => exprec(delta, o.exprec, o.route, o.last_step).map_err(|e| invalid(&e)),
+        "unirec" => Ok(unirec(delta, o.route, o.last_step)?),
+        "exprec" => Ok(exprec(delta, o.exprec, o.route, o.last_step)?),
         "circle" => Ok(circle::solve(setup.normalised_distance()).stop_list()),
         "policy1" => mdp(Memory::None),
         "policy2" => mdp(Memory::Last),
