@@ -671,7 +671,7 @@ pub(crate) fn demo(g: &Global) -> anyhow::Result<()> {
     let dir = g.out.clone().unwrap_or_else(|| PathBuf::from("stopscan-out"));
     ensure_dir(&dir)?;
     let files = save_chart(&dir, "circle-ratio", &chart)?;
-    let setup = exp::paper_setup(2.0);
+    let setup = exp::paper_setup(2.0)?;
     let value = json!({
         "format": "stopscan-corner-demo/1",
         "circle": circles.iter().map(|s| json!({"distance": s.distance, "ratio": s.ratio, "scans": s.scans, "steps": s.steps, "scan_points": s.scan_points})).collect::<Vec<_>>(),

@@ -61,13 +61,12 @@ fn trial(
     ratio: f64,
     seed: u64,
 ) -> Result<(f64, GridBounds), ExperimentError> {
-    let roi = GridRoi::random(cells, seed).map_err(|e| ExperimentError::Model(e.to_string()))?;
+    let roi = GridRoi::random(cells, seed)?;
     let heading = 90.0 * (seed >> 60 & 3) as f64;
     let drift = Drift { speed: 1.0 / ratio, heading_deg: heading };
     let mut world = GridWorld::new(roi, drift, GridSensor::Ideal, seed);
     let cost = CostModel { scan_time: 0.0, move_time: 0.0, speed: 1.0 };
-    let m = explore(&mut world, robots, cost, Recording::NONE)
-        .map_err(|e| ExperimentError::Model(e.to_string()))?;
+    let m = explore(&mut world, robots, cost, Recording::NONE)?;
     Ok((m.team.makespan(), GridBounds::of_world(&world, robots, &cost)))
 }
 
@@ -113,7 +112,8 @@ pub const RATIOS: [f64; 10] = [1.5, 2.0, 2.5, 3.0, 3.5, 4.0, 4.5, 5.0, 5.5, 6.0]
 /// All three sweeps, `trials` regions per point.
 ///
 /// # Errors
-/// [`ExperimentError::Model`] if a run fails (it never should).
+/// [`ExperimentError::Roi`] or [`ExperimentError::Mission`] if a region or a run fails (it
+/// never should).
 pub fn fig7_rows(trials: usize, seed: u64) -> Result<Vec<Fig7Row>, ExperimentError> {
     let (c0, r0, s0) = FIXED;
     let mut rows = Vec::new();
@@ -195,7 +195,7 @@ fn chart(rows: &[Fig7Row], sweep: &str, title: &str, x_label: &str) -> LineChart
 /// Reproduces Fig. 7 (b)–(d) with `trials` regions per point (the paper: 100).
 ///
 /// # Errors
-/// [`ExperimentError::Model`] if a run fails.
+/// [`ExperimentError::Roi`] or [`ExperimentError::Mission`] if a region or a run fails.
 pub fn reproduce(trials: usize, seed: u64) -> Result<Reproduction, ExperimentError> {
     let rows = fig7_rows(trials, seed)?;
     let total: usize = rows.iter().map(|r| r.trials).sum();

@@ -170,12 +170,58 @@ pub enum ExperimentError {
     /// The identifier is not known; the message lists the known ones.
     #[error("unknown reproduction {0:?}; known: {1}")]
     UnknownId(String, String),
-    /// A model piece was rejected.
-    #[error("{0}")]
-    Model(String),
-    /// A simulated strategy misbehaved.
+    /// A simulated corner strategy misbehaved.
     #[error(transparent)]
     Sim(#[from] crate::sim::corner::SimError),
+    /// A corner setup (distance, cost model) was rejected.
+    #[error(transparent)]
+    Setup(#[from] crate::protocol::corner::InvalidCornerSetup),
+    /// A belief or a truth was rejected.
+    #[error(transparent)]
+    Distribution(#[from] crate::protocol::corner::InvalidDistribution),
+    /// UNIREC or EXPREC rejected its parameters.
+    #[error(transparent)]
+    StopList(#[from] crate::strategy::corner::InvalidStopList),
+    /// A corner strategy could not be built by name.
+    #[error(transparent)]
+    Strategy(#[from] crate::strategy::corner::registry::BuildError),
+    /// A corner MDP could not be built or solved.
+    #[error(transparent)]
+    Mdp(#[from] crate::strategy::corner::mdp::CornerMdpError),
+    /// Fig. 5 of the corner paper has distributions 1 to 4 only.
+    #[error("Fig. 5 has distributions 1 to 4, not {0}")]
+    NoSuchFig5Distribution(usize),
+    /// The MDP's policy did not go straight to the corner for any scan time up to 10⁶ s (the
+    /// search for the scan time from which it does gave up).
+    #[error("the policy never goes straight to the corner")]
+    NeverStraight,
+    /// A generated environment was rejected.
+    #[error(transparent)]
+    Environment(#[from] crate::geometry::InvalidEnvironment),
+    /// An environment file could not be loaded.
+    #[error(transparent)]
+    Load(#[from] crate::io::LoadError),
+    /// No benchmark environment was found below the data folder.
+    #[error(
+        "no benchmark environments (*.pol, ROS *.yaml) below {}; pass --data DIR",
+        .0.display()
+    )]
+    NoBenchmarks(
+        /// The folder searched.
+        std::path::PathBuf,
+    ),
+    /// The visibility structure or a scan failed.
+    #[error(transparent)]
+    Visibility(#[from] crate::algorithm::visibility::VisibilityError),
+    /// A polygon exploration was cut short.
+    #[error(transparent)]
+    Exploration(#[from] crate::sim::polygon::PolygonRunError),
+    /// A region of interest was rejected.
+    #[error(transparent)]
+    Roi(#[from] crate::world::grid::InvalidRoi),
+    /// A region-of-interest mission failed.
+    #[error(transparent)]
+    Mission(#[from] crate::sim::grid::GridRunError),
 }
 
 /// Seeds one sample's generator from the run seed and the sample index, so results do not

@@ -15,16 +15,12 @@ use crate::world::polygon::PolygonWorld;
 /// The reproductions this module knows.
 pub const IDS: &[&str] = &["views-spiral", "views-star", "views-benchmarks"];
 
-fn err(e: impl std::fmt::Display) -> ExperimentError {
-    ExperimentError::Model(e.to_string())
-}
-
 fn explore(
     inst: &crate::generate::Instance,
 ) -> Result<(PolygonWorld, PolygonRun), ExperimentError> {
-    let world = PolygonWorld::new(inst.domain.clone()).map_err(err)?;
-    let r = run(&world, inst.start, &CostModel::default(), &mut DepthFirst::new(), &mut NoObserver)
-        .map_err(err)?;
+    let world = PolygonWorld::new(inst.domain.clone())?;
+    let r =
+        run(&world, inst.start, &CostModel::default(), &mut DepthFirst::new(), &mut NoObserver)?;
     Ok((world, r))
 }
 
@@ -44,7 +40,7 @@ pub fn reproduce(id: &str, data: &std::path::Path) -> Result<Reproduction, Exper
 fn views_spiral() -> Result<Reproduction, ExperimentError> {
     let mut rows = Vec::new();
     for turns in 1..=10 {
-        let inst = spiral(turns).map_err(err)?;
+        let inst = spiral(turns)?;
         let (_, r) = explore(&inst)?;
         let refl = inst.domain.reflex_vertices().len();
         rows.push(Row::new(
@@ -70,7 +66,7 @@ fn views_spiral() -> Result<Reproduction, ExperimentError> {
 fn views_star() -> Result<Reproduction, ExperimentError> {
     let mut rows = Vec::new();
     for spikes in [3, 4, 5, 6, 8, 10, 12] {
-        let inst = star(spikes).map_err(err)?;
+        let inst = star(spikes)?;
         let (world, r) = explore(&inst)?;
         let refl = inst.domain.reflex_vertices().len();
         rows.push(Row::new(
@@ -84,8 +80,7 @@ fn views_star() -> Result<Reproduction, ExperimentError> {
             &CostModel::default(),
             &mut DepthFirst::with_placement(Placement::Far),
             &mut NoObserver,
-        )
-        .map_err(err)?;
+        )?;
         rows.push(Row::new(
             format!("star, r = {refl}: scans, viewpoints deep behind each window (Fig. 11)"),
             Some((refl + 1) as f64),
@@ -95,8 +90,7 @@ fn views_star() -> Result<Reproduction, ExperimentError> {
         let views: Vec<Vec<[f64; 2]>> = [inst.start, [0.0, 0.0]]
             .iter()
             .map(|&p| world.scan(p).map(|o| o.region.polygon))
-            .collect::<Result<_, _>>()
-            .map_err(err)?;
+            .collect::<Result<_, _>>()?;
         let covered = Region::union_all(&views).area() / inst.domain.area();
         let optimum = if (covered - 1.0).abs() < 1e-7 { 2.0 } else { f64::NAN };
         rows.push(Row::new(
@@ -151,15 +145,12 @@ fn views_benchmarks(data: &std::path::Path) -> Result<Reproduction, ExperimentEr
     use rayon::prelude::*;
     let files = benchmark_files(data);
     if files.is_empty() {
-        return Err(ExperimentError::Model(format!(
-            "no benchmark environments (*.pol, ROS *.yaml) below {}; pass --data DIR",
-            data.display()
-        )));
+        return Err(ExperimentError::NoBenchmarks(data.to_path_buf()));
     }
     let mut inputs: Vec<SweepInput> = Vec::new();
     for f in &files {
-        let env = crate::io::read_environment(f).map_err(err)?;
-        let world = PolygonWorld::new(env.domain.clone()).map_err(err)?;
+        let env = crate::io::read_environment(f)?;
+        let world = PolygonWorld::new(env.domain.clone())?;
         let start = env.queries.first().copied().unwrap_or_else(|| world.interior_point());
         let name = f.strip_prefix(data).unwrap_or(f).display().to_string();
         inputs.push((name, env.domain, start));
@@ -175,13 +166,11 @@ fn views_benchmarks(data: &std::path::Path) -> Result<Reproduction, ExperimentEr
     };
     let sweep_rows =
         sweep(&inputs, &names, &CostModel::default(), None, limits.bounds_seconds, &|| {});
-    let refs: Vec<Result<References, String>> = inputs
+    let refs: Vec<Result<References, crate::offline::polygon::OfflineError>> = inputs
         .par_iter()
         .map(|(_, d, start)| {
-            let vis = crate::algorithm::visibility::Visibility::new(d.clone())
-                .map_err(|e| e.to_string())?;
+            let vis = crate::algorithm::visibility::Visibility::new(d.clone())?;
             crate::offline::polygon::references(&vis, *start, None, limits, &mut |_| {})
-                .map_err(|e| e.to_string())
         })
         .collect();
     let mut rows = Vec::new();

@@ -1,6 +1,6 @@
 //! Figures 4, 6, 7 and 8 of the corner paper; Table 1 and Fig. 7 of the circle paper.
 
-use super::{LineupOptions, fig5, lineup, model_err, paper_setup, ratio_curve};
+use super::{LineupOptions, fig5, lineup, paper_setup, ratio_curve};
 use crate::experiment::{ExperimentError, Reproduction, Row};
 use crate::offline::corner::{expected, optimal::optimal_scans};
 use crate::protocol::corner::{AngleDistribution, CornerSetup, LastStep};
@@ -9,7 +9,7 @@ use crate::strategy::corner::mdp::{CornerMdp, Memory, Reading};
 use crate::strategy::corner::{StopList, circle};
 
 pub(super) fn corner_policy_figure(id: &str) -> Result<Reproduction, ExperimentError> {
-    let setup = paper_setup(2.0);
+    let setup = paper_setup(2.0)?;
     let (dist_no, memories): (usize, &[Memory]) = if id == "corner-fig-4" {
         (4, &[Memory::Last])
     } else {
@@ -30,7 +30,7 @@ pub(super) fn corner_policy_figure(id: &str) -> Result<Reproduction, ExperimentE
                 reading,
                 belief: belief.clone(),
             };
-            let p = m.solve().map_err(model_err)?;
+            let p = m.solve()?;
             let name = if memory == Memory::Last { "MDP2" } else { "MDP1" };
             let label = format!("{name} [{tag} probabilities]");
             let first = p.scan_stops.first().map_or(90.0, |&i| 5.0 * i as f64);
@@ -144,15 +144,14 @@ fn policy(
     reading: Reading,
     belief: &AngleDistribution,
 ) -> Result<crate::strategy::corner::mdp::CornerPolicy, ExperimentError> {
-    CornerMdp {
-        setup: paper_setup(tau),
+    Ok(CornerMdp {
+        setup: paper_setup(tau)?,
         step: 5f64.to_radians(),
         memory,
         reading,
         belief: belief.clone(),
     }
-    .solve()
-    .map_err(model_err)
+    .solve()?)
 }
 
 /// The smallest scan time from which the MDP's policy goes straight to the corner and scans
@@ -172,9 +171,7 @@ fn straight_from(
     while !straight(hi)? {
         hi *= 2.0;
         if hi > 1e6 {
-            return Err(ExperimentError::Model(
-                "the policy never goes straight to the corner".into(),
-            ));
+            return Err(ExperimentError::NeverStraight);
         }
     }
     while hi - lo > 1e-6 {
@@ -191,7 +188,7 @@ pub(super) fn corner_fig_7() -> Result<Reproduction, ExperimentError> {
     let mut rows = Vec::new();
     let mut advantage = Vec::new();
     for &tau in &taus {
-        let t = lineup_times(&paper_setup(tau), &belief, &belief)?;
+        let t = lineup_times(&paper_setup(tau)?, &belief, &belief)?;
         for (k, v) in t.iter().enumerate() {
             series[k].push((tau, *v));
             rows.push(Row::new(format!("τ = {tau} s / {}", NAMES[k]), None, *v));
@@ -208,11 +205,11 @@ pub(super) fn corner_fig_7() -> Result<Reproduction, ExperimentError> {
         Reading::Literal,
         &belief,
     )?);
-    let straight_time = paper_setup(1.0).travel(
+    let straight_time = paper_setup(1.0)?.travel(
         0.0,
         crate::protocol::corner::CORNER,
         crate::protocol::corner::Route::Arc,
-    ) / paper_setup(1.0).cost.speed;
+    ) / paper_setup(1.0)?.cost.speed;
     let first_equal = taus.iter().find(|&&t| t >= from).copied();
     let (first, last) = (advantage[0].1, advantage[advantage.len() - 1].1);
     let trend = if last > first {
@@ -255,7 +252,7 @@ pub(super) fn corner_fig_7() -> Result<Reproduction, ExperimentError> {
 fn normal_belief(mu: i32) -> Result<AngleDistribution, ExperimentError> {
     AngleDistribution::normal(f64::from(mu).to_radians(), 5f64.to_radians())
         .and_then(|d| d.bucketed(5f64.to_radians()))
-        .map_err(model_err)
+        .map_err(ExperimentError::from)
 }
 
 fn scan_degrees(list: &StopList) -> String {
@@ -265,7 +262,7 @@ fn scan_degrees(list: &StopList) -> String {
 
 /// The notes on how the two policies relate in Fig. 8: POLICY1 at µ is POLICY2 at µ − 5°.
 fn fig8_shift_note(reading: Reading) -> Result<(usize, usize, Vec<String>), ExperimentError> {
-    let setup = paper_setup(2.0);
+    let setup = paper_setup(2.0)?;
     let (mut same, mut total, mut except) = (0, 0, Vec::new());
     for mu in (30..=90).step_by(5) {
         let p1 = lineup_lists(&setup, &normal_belief(mu)?, reading)?[2].clone();
@@ -317,15 +314,13 @@ fn bucket_note(setup: &CornerSetup) -> Result<String, ExperimentError> {
 }
 
 pub(super) fn corner_fig_8() -> Result<Reproduction, ExperimentError> {
-    let setup = paper_setup(2.0);
+    let setup = paper_setup(2.0)?;
     let truths = [
         ("left", fig5(1)?, "truth N(60°, 5°)"),
         (
             "right",
-            AngleDistribution::uniform(0.0, std::f64::consts::FRAC_PI_2)
-                .map_err(model_err)?
-                .bucketed(5f64.to_radians())
-                .map_err(model_err)?,
+            AngleDistribution::uniform(0.0, std::f64::consts::FRAC_PI_2)?
+                .bucketed(5f64.to_radians())?,
             "truth uniform on [0°, 90°]",
         ),
     ];
@@ -560,11 +555,12 @@ mod tests {
         // One extra scan at 55° pays while τ < (φ/π)(π/2 − φ)·20/(1 − φ/π) = 5.376 s.
         assert!((from - 5.376).abs() < 0.01, "{from}");
         for tau in [from + 1e-3, 7.5, 20.0, 100.0] {
-            let lists = lineup_lists(&paper_setup(tau), &belief, FIGURE_READING).unwrap();
+            let lists = lineup_lists(&paper_setup(tau).unwrap(), &belief, FIGURE_READING).unwrap();
             assert_eq!(lists[2], lists[3], "τ = {tau}");
             assert_eq!(lists[3].angles().len(), 1, "τ = {tau}: straight to the corner");
         }
-        let lists = lineup_lists(&paper_setup(from - 0.01), &belief, FIGURE_READING).unwrap();
+        let lists =
+            lineup_lists(&paper_setup(from - 0.01).unwrap(), &belief, FIGURE_READING).unwrap();
         assert_ne!(lists[2], lists[3]);
         let r = corner_fig_7().unwrap();
         assert!(

@@ -6,7 +6,7 @@
 //! it, each changing exactly one choice. No reading is ever picked per row after seeing the
 //! paper's number.
 
-use super::{LineupOptions, fig5, fit_distribution_2, lineup, model_err, monte_carlo, paper_setup};
+use super::{LineupOptions, fig5, fit_distribution_2, lineup, monte_carlo, paper_setup};
 use crate::experiment::{ExperimentError, MonteCarlo, Reproduction, Row, sample_seed};
 use crate::offline::corner::expected;
 use crate::protocol::corner::{AngleDistribution, CornerSetup, LastStep};
@@ -118,7 +118,7 @@ impl Table {
     /// `(row prefix, belief, truth, published values)` per group of four rows.
     fn groups(self) -> Result<Vec<Group>, ExperimentError> {
         if self == Self::Four {
-            let truth = AngleDistribution::uniform(0.0, std::f64::consts::PI).map_err(model_err)?;
+            let truth = AngleDistribution::uniform(0.0, std::f64::consts::PI)?;
             return Ok(vec![(String::new(), fig5(1)?, truth, TABLE_4)]);
         }
         let paper = if self == Self::Two { TABLE_2 } else { TABLE_3 };
@@ -176,7 +176,7 @@ fn time_sd(list: &StopList, setup: &CornerSetup, truth: &AngleDistribution) -> f
 
 /// Every cell of a table under every reading (exact values only).
 fn cells(table: Table) -> Result<Vec<Cell>, ExperimentError> {
-    let setup = paper_setup(table.tau());
+    let setup = paper_setup(table.tau())?;
     let readings = readings();
     let mut out = Vec::new();
     for (g, (prefix, belief, truth, paper)) in table.groups()?.into_iter().enumerate() {
@@ -212,7 +212,7 @@ fn rows(
     samples: usize,
     seed: u64,
 ) -> Result<Vec<Row>, ExperimentError> {
-    let setup = paper_setup(table.tau());
+    let setup = paper_setup(table.tau())?;
     let names = readings().map(|r| r.name);
     let mut rows = Vec::new();
     for c in cells {
@@ -347,14 +347,14 @@ fn declaration() -> Result<Vec<String>, ExperimentError> {
     ])
 }
 
-fn common_model(tau: f64) -> Vec<String> {
-    let s = paper_setup(tau);
-    vec![
+fn common_model(tau: f64) -> Result<Vec<String>, ExperimentError> {
+    let s = paper_setup(tau)?;
+    Ok(vec![
         format!("D = 10 m, v = 0.5 m/s, τ = {tau} s, no per-move time; δ = τv/D = {} for UNIREC and EXPREC", s.delta()),
         "θ ranges over [0°, 180°]; θ ≥ 90° is seen only from the corner; travel is along the circle (D·Δφ), as the paper's formula charges it".into(),
         "MDP stops every 5° (the bucket size of Fig. 5); distributions are the Fig. 5 histograms (5° buckets, uniform inside)".into(),
         "'ours' is the exact expected time (integrated over θ); 'monte_carlo' is the mean of --samples simulated runs (the paper's 1000 by default), seeded".into(),
-    ]
+    ])
 }
 
 /// How many published values agree under each reading, and which disagree under the
@@ -409,7 +409,7 @@ fn fine_optimum(setup: &CornerSetup, dist: &AngleDistribution) -> Result<f64, Ex
         reading: Reading::Conditional,
         belief: dist.clone(),
     };
-    Ok(expected(&fine.solve().map_err(model_err)?.stop_list, setup, dist).time)
+    Ok(expected(&fine.solve()?.stop_list, setup, dist).time)
 }
 
 /// A published value below the exact optimum of its own setup, which no strategy reaches in
@@ -430,7 +430,7 @@ fn below_optimum(table: Table, cells: &[Cell]) -> Result<Vec<Below>, ExperimentE
         // Belief and truth differ; the optimum for the truth is not what the table compares.
         return Ok(Vec::new());
     }
-    let setup = paper_setup(table.tau());
+    let setup = paper_setup(table.tau())?;
     let mut out = Vec::new();
     for (g, (_, _, truth, _)) in table.groups()?.into_iter().enumerate() {
         let optimum = fine_optimum(&setup, &truth)?;
@@ -466,7 +466,7 @@ fn describe_below(b: &[Below]) -> String {
 /// What Table III (τ = 10 s) shows about the paper's simulator, for the notes of Tables II
 /// and III.
 fn tau10_evidence() -> Result<String, ExperimentError> {
-    let setup = paper_setup(10.0);
+    let setup = paper_setup(10.0)?;
     let cells = cells(Table::Three)?;
     let (mut min_rel, mut min_z) = (f64::INFINITY, f64::INFINITY);
     for (d, c) in (1..=4).zip(cells.iter().filter(|c| c.strategy == 1)) {
@@ -474,8 +474,7 @@ fn tau10_evidence() -> Result<String, ExperimentError> {
         // Every EXPREC we can construct: both stop rules, both last-step charges.
         for r in [ExprecReading::TableI, ExprecReading::Appendix] {
             for last in [LastStep::Nominal, LastStep::Capped] {
-                let l = exprec(setup.delta(), r, crate::protocol::corner::Route::Arc, last)
-                    .map_err(model_err)?;
+                let l = exprec(setup.delta(), r, crate::protocol::corner::Route::Arc, last)?;
                 let v = expected(&l, &setup, &dist).time;
                 let se = time_sd(&l, &setup, &dist) / PAPER_SAMPLES.sqrt();
                 min_rel = min_rel.min((v - c.paper) / c.paper);
@@ -515,7 +514,7 @@ pub(super) fn corner_table(
 ) -> Result<Reproduction, ExperimentError> {
     let cells = cells(table)?;
     let rows = rows(table, &cells, samples, seed)?;
-    let mut model = common_model(table.tau());
+    let mut model = common_model(table.tau())?;
     model.extend(declaration()?);
     let mut notes = agreement_notes(&cells);
     if table == Table::Four {
@@ -534,7 +533,7 @@ pub(super) fn corner_table(
             ));
         }
     } else {
-        let (m, s, r) = fit_distribution_2();
+        let (m, s, r) = fit_distribution_2()?;
         model.push(format!(
             "Distribution 2 is cut from the text; fitted as N({m}°, {s}°) to its UNIREC (τ = 2, 10) and EXPREC (τ = 2) values (squared relative residual {r:.5}); the fit is a flat ridge (wide Gaussians leaning to large θ), so dist 2 rows carry that uncertainty"
         ));
@@ -604,7 +603,7 @@ mod tests {
 
     #[test]
     fn exact_standard_deviation_matches_sampling() {
-        let setup = paper_setup(2.0);
+        let setup = paper_setup(2.0).unwrap();
         let truth = fig5(4).unwrap();
         let list = lineup(&setup, &truth, declared()).unwrap()[0].list.clone();
         let sd = time_sd(&list, &setup, &truth);
