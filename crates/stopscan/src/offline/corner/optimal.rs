@@ -130,6 +130,9 @@ pub fn optimal_scans(d: f64, k: usize, seed: u64) -> OptimalScans {
 
 /// [`optimal_scans`], calling `progress(j, ratio)` after the search with `j` points (`ratio`:
 /// the best with at most `j`), for a progress display.
+///
+/// # Panics
+/// If `d` is not finite and positive.
 pub fn optimal_scans_with(
     d: f64,
     k: usize,

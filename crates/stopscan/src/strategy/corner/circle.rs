@@ -199,6 +199,10 @@ pub struct CircleSolution {
 
 impl CircleSolution {
     /// The same scan points as a corner-paper stop list (chord route).
+    ///
+    /// # Panics
+    /// If the public fields were edited so that `angles` is empty or not strictly increasing
+    /// below the corner: a solution from [`solve`] always satisfies both.
     pub fn stop_list(&self) -> StopList {
         let inner = &self.angles[..self.angles.len() - 1];
         StopList::from_nominal(inner, Route::Chord, LastStep::Capped)
