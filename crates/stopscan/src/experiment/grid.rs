@@ -9,6 +9,7 @@ use rayon::prelude::*;
 use serde::{Deserialize, Serialize};
 
 use super::{ExperimentError, Reproduction, Row, sample_seed};
+use crate::kernel::tolerance::SAME_VALUE_REL;
 use crate::offline::grid::GridBounds;
 use crate::protocol::CostModel;
 use crate::render::{LineChart, Series};
@@ -98,7 +99,10 @@ fn point(
         upper: mean(&|r| r.1.lemma1_upper),
         lower: mean(&|r| r.1.lemma2_lower),
         lawn_mower: mean(&|r| r.1.lawn_mower),
-        within_upper: runs.iter().filter(|r| r.0 <= r.1.lemma1_upper * (1.0 + 1e-12)).count(),
+        within_upper: runs
+            .iter()
+            .filter(|r| r.0 <= r.1.lemma1_upper * (1.0 + SAME_VALUE_REL))
+            .count(),
     })
 }
 

@@ -5,6 +5,7 @@ use super::{ExperimentError, Reproduction, Row};
 use crate::algorithm::region::Region;
 use crate::generate::{spiral, star};
 use crate::io::run_record::RunRecord;
+use crate::kernel::tolerance::AREA_REL;
 use crate::offline::polygon::References;
 use crate::protocol::CostModel;
 use crate::sim::NoObserver;
@@ -182,7 +183,7 @@ fn views_benchmarks(data: &std::path::Path) -> Result<Reproduction, ExperimentEr
                 continue;
             }
             within += usize::from(row.within_bound);
-            complete += usize::from(row.open_windows == 0 && row.coverage >= 1.0 - 1e-9);
+            complete += usize::from(row.open_windows == 0 && row.coverage >= 1.0 - AREA_REL);
             rows.push(Row::new(
                 format!("{name} · {}: scans (paper: the bound r + 1)", row.strategy),
                 Some(row.scans_upper as f64),
@@ -210,7 +211,8 @@ fn views_benchmarks(data: &std::path::Path) -> Result<Reproduction, ExperimentEr
             "{within} of {runs} runs within the paper's bound (r + 1 for every strategy; it is proved for depth_first only)"
         ),
         format!(
-            "{complete} of {runs} runs complete: no window left open (the exact certificate) and coverage ≥ 1 − 1e-9"
+            "{complete} of {runs} runs complete: no window left open (the exact certificate) and coverage ≥ 1 − {}",
+            crate::kernel::Num(AREA_REL)
         ),
         format!(
             "offline references: greedy for up to {} vertices, the exact optimum for up to {} within {OPTIMUM_NODES} branch-and-bound nodes each (solver {}; a machine-independent budget); lower bounds within {} s (witnesses with disjoint visibility regions, a valid fractional packing, the distance to the farthest witness's region)",

@@ -13,6 +13,7 @@ use plotters::prelude::*;
 use plotters::style::text_anchor::{HPos, Pos, VPos};
 use serde::{Deserialize, Serialize};
 
+use crate::kernel::tolerance::COUNT_SLACK;
 use crate::strategy::corner::mdp::Cell;
 
 mod glyphs;
@@ -114,6 +115,8 @@ pub fn write_chart(chart: &LineChart, stem: &Path) -> Result<Vec<PathBuf>, Rende
 }
 
 fn bounds(chart: &LineChart) -> Option<(f64, f64, f64, f64)> {
+    // Data that span less than this are flat: pad them by half their magnitude.
+    const FLAT_SPAN: f64 = 1e-12;
     let pts =
         chart.series.iter().flat_map(|s| &s.points).filter(|p| p.0.is_finite() && p.1.is_finite());
     let (mut x0, mut x1, mut y0, mut y1) = (f64::MAX, f64::MIN, f64::MAX, f64::MIN);
@@ -126,7 +129,7 @@ fn bounds(chart: &LineChart) -> Option<(f64, f64, f64, f64)> {
         return None;
     }
     let pad = |a: f64, b: f64| {
-        if b - a < 1e-12 { 0.5 * a.abs().max(1.0) } else { 0.04 * (b - a) }
+        if b - a < FLAT_SPAN { 0.5 * a.abs().max(1.0) } else { 0.04 * (b - a) }
     };
     let (px, py) = (pad(x0, x1), pad(y0, y1));
     Some((x0 - px, x1 + px, y0 - py, y1 + py))
@@ -141,7 +144,8 @@ pub fn ticks(lo: f64, hi: f64, max: usize) -> (Vec<f64>, usize) {
     loop {
         for m in [1.0, 2.0, 5.0] {
             let step = m * 10f64.powi(k);
-            let (first, last) = ((lo / step - 1e-9).ceil(), (hi / step + 1e-9).floor());
+            let (first, last) =
+                ((lo / step - COUNT_SLACK).ceil(), (hi / step + COUNT_SLACK).floor());
             if last - first + 1.0 <= max as f64 {
                 let decimals = (-k).max(0) as usize;
                 let ticks = (first as i64..=last as i64).map(|i| i as f64 * step).collect();

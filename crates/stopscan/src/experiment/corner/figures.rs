@@ -117,6 +117,10 @@ fn lineup_times(
 
 const NAMES: [&str; 4] = ["UNIREC", "EXPREC", "POLICY1", "POLICY2"];
 
+/// Two exact expected times closer than this (relative) are the same time: Fig. 8 counts the
+/// beliefs at which POLICY1 takes what POLICY2 took at the belief before.
+const SAME_TIME_REL: f64 = 1e-9;
+
 /// Expected time of the four strategies against a swept parameter.
 fn lineup_chart(
     title: String,
@@ -345,7 +349,7 @@ pub(super) fn corner_fig_8() -> Result<Reproduction, ExperimentError> {
             }
             if mu < 85 {
                 below_85 += 1;
-                if (t[2] - p2_prev).abs() <= 1e-9 * t[2] {
+                if (t[2] - p2_prev).abs() <= SAME_TIME_REL * t[2] {
                     equal += 1;
                 }
             }

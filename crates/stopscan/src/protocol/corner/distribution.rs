@@ -13,6 +13,15 @@ use rand::RngExt;
 use serde::{Deserialize, Serialize};
 
 use crate::kernel::Num;
+use crate::kernel::tolerance::{ANGLE_SLACK, COUNT_SLACK};
+
+/// A Gaussian with less mass than this inside [0, π] is refused: truncating it to [0, π]
+/// would divide by (almost) nothing.
+const NEGLIGIBLE_MASS: f64 = 1e-12;
+
+/// How far past π (radians) a histogram bucket may end before it is refused; buckets that end
+/// past π are clipped to it.
+const BUCKET_END_SLACK: f64 = 1e-9;
 
 /// A distribution of the edge angle θ on [0, π] (radians).
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
@@ -53,7 +62,7 @@ fn bucket_count(bucket: f64) -> Result<usize, InvalidDistribution> {
     if !(bucket.is_finite() && bucket > 0.0 && bucket <= PI) {
         return Err(InvalidDistribution::BucketWidth(bucket));
     }
-    let n = (PI / bucket - 1e-9).ceil();
+    let n = (PI / bucket - COUNT_SLACK).ceil();
     if n > MAX_BUCKETS as f64 {
         return Err(InvalidDistribution::TooManyBuckets { width: bucket, count: n });
     }
@@ -218,7 +227,7 @@ impl AngleDistribution {
     /// # Errors
     /// If the interval is empty or leaves [0, π].
     pub fn uniform(lo: f64, hi: f64) -> Result<Self, InvalidDistribution> {
-        if !(lo.is_finite() && hi.is_finite() && 0.0 <= lo && lo < hi && hi <= PI + 1e-12) {
+        if !(lo.is_finite() && hi.is_finite() && 0.0 <= lo && lo < hi && hi <= PI + ANGLE_SLACK) {
             return Err(InvalidDistribution::UniformBounds { lo, hi });
         }
         Ok(Self::Uniform { lo, hi: hi.min(PI) })
@@ -232,7 +241,7 @@ impl AngleDistribution {
         if !(mean.is_finite() && sd.is_finite() && sd > 0.0) {
             return Err(InvalidDistribution::NormalParameters { mean, sd });
         }
-        if normal_cdf((PI - mean) / sd) - normal_cdf(-mean / sd) < 1e-12 {
+        if normal_cdf((PI - mean) / sd) - normal_cdf(-mean / sd) < NEGLIGIBLE_MASS {
             return Err(InvalidDistribution::NormalNoMass { mean, sd });
         }
         Ok(Self::Normal { mean, sd })
@@ -471,7 +480,7 @@ fn check_buckets(buckets: &[(f64, f64, f64)]) -> Result<f64, BucketFault> {
         if lo >= hi {
             return Err(fault(k, BucketProblem::Empty));
         }
-        if lo < -1e-12 || hi > PI + 1e-9 {
+        if lo < -ANGLE_SLACK || hi > PI + BUCKET_END_SLACK {
             return Err(fault(k, BucketProblem::OutsideRange));
         }
         if !w.is_finite() {
@@ -485,7 +494,7 @@ fn check_buckets(buckets: &[(f64, f64, f64)]) -> Result<f64, BucketFault> {
     order.sort_by(|&a, &b| buckets[a].0.total_cmp(&buckets[b].0).then(a.cmp(&b)));
     for pair in order.windows(2) {
         let (a, b) = (pair[0], pair[1]);
-        if buckets[b].0 < buckets[a].1 - 1e-12 {
+        if buckets[b].0 < buckets[a].1 - ANGLE_SLACK {
             let (first, later) = (a.min(b), a.max(b));
             return Err(BucketFault::Overlap { index: later, other: first });
         }

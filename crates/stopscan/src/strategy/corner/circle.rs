@@ -19,6 +19,9 @@ use crate::strategy::corner::StopList;
 /// The largest `c` that the bisection starts from when it reaches; `c(d) ≤ 2.17` for all `d`.
 const SAFE_HI: f64 = 3.0;
 
+/// The relative precision to which [`ratio`] and the thresholds of Table 1 are searched.
+const PRECISION: f64 = 1e-12;
+
 /// How the recursion ended for one `(d, c)`.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum Outcome {
@@ -101,7 +104,7 @@ pub fn ratio(d: f64) -> f64 {
 
 /// `c(d) − 1`, searched directly so that small distances keep full relative precision.
 pub fn ratio_excess(d: f64) -> f64 {
-    excess_to(d, 1e-12)
+    excess_to(d, PRECISION)
 }
 
 /// `c(d) − 1` to a relative tolerance `tol` (0 means: to adjacent floating-point numbers).
@@ -272,7 +275,7 @@ pub fn thresholds(count: usize) -> Vec<Threshold> {
             lo = hi;
             hi += 0.05 * (1.0 + hi.sqrt());
         }
-        while hi - lo > 1e-12 * hi {
+        while hi - lo > PRECISION * hi {
             let mid = 0.5 * (lo + hi);
             if scans(mid) <= k {
                 lo = mid;
