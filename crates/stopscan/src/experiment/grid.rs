@@ -219,30 +219,29 @@ pub fn reproduce(trials: usize, seed: u64) -> Result<Reproduction, ExperimentErr
     let ratio: Vec<&Fig7Row> = rows.iter().filter(|r| r.sweep == "speed_ratio").collect();
     let gap_shrinks =
         ratio.first().zip(ratio.last()).is_some_and(|(a, b)| b.upper - b.lower < a.upper - a.lower);
-    Ok(Reproduction {
-        id: "roi-fig-7".into(),
-        model: vec![
+    Ok(Reproduction::new(
+        "roi-fig-7",
+        vec![
             format!("Fixed values as in the paper: {} cells, {} robots, S_r/S_p = {} when not swept; S_r = 1 m/s, cells of 1 m.", FIXED.0, FIXED.1, FIXED.2),
             format!("{trials} random regions per point (Eden growth from the start cell, seeded per trial), drifting north, south, east or west at random (section 6)."),
             "The paper does not give the swept ranges; ours: cells 40–400, robots 1–32, S_r/S_p 1.5–6.".into(),
             "Lemma 1 uses each trial's own d_max (the depth of the tree the robots built); logarithms are base 2.".into(),
             "The lawn mower sweeps the region's bounding rectangle split into R strips (the better of the two directions), ignoring the flights to the strips (section 6).".into(),
         ],
-        rows: out,
-        notes: vec![
+        out,
+        vec![
             format!("{within} of {total} trials are within their Lemma 1 bound."),
             format!("{closer_to_lower} of {} points have a mean closer to the lower bound than to the upper bound (the paper: closer to the lower bound).", rows.len()),
             format!("Time decreases with the number of robots: {decreasing} (the paper: it does)."),
             format!("The gap between the upper and lower bounds shrinks as S_r/S_p grows: {gap_shrinks} (the paper: it does)."),
         ],
-        charts: vec![
-            ("roi-fig-7b".into(), chart(&rows, "cells", "Fig. 7 (b): time against the number of cells", "cells C")),
-            ("roi-fig-7c".into(), chart(&rows, "robots", "Fig. 7 (c): time against the number of robots", "robots R")),
-            ("roi-fig-7d".into(), chart(&rows, "speed_ratio", "Fig. 7 (d): time against the speed ratio", "S_r / S_p")),
-        ],
-        images: Vec::new(),
-        tables: vec![("roi-fig-7.csv".into(), csv(&rows))],
-    })
+    )
+    .with_charts(vec![
+        ("roi-fig-7b".into(), chart(&rows, "cells", "Fig. 7 (b): time against the number of cells", "cells C")),
+        ("roi-fig-7c".into(), chart(&rows, "robots", "Fig. 7 (c): time against the number of robots", "robots R")),
+        ("roi-fig-7d".into(), chart(&rows, "speed_ratio", "Fig. 7 (d): time against the speed ratio", "S_r / S_p")),
+    ])
+    .with_tables(vec![("roi-fig-7.csv".into(), csv(&rows))]))
 }
 
 #[cfg(test)]

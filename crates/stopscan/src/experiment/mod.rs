@@ -163,6 +163,50 @@ pub struct Reproduction {
     pub tables: Vec<(String, String)>,
 }
 
+impl Reproduction {
+    /// A reproduction: its identifier, the model choices made (one sentence each), the
+    /// compared numbers and the findings. Charts, policy images and tables are added with
+    /// [`with_charts`](Self::with_charts), [`with_images`](Self::with_images) and
+    /// [`with_tables`](Self::with_tables).
+    pub fn new(
+        id: impl Into<String>,
+        model: Vec<String>,
+        rows: Vec<Row>,
+        notes: Vec<String>,
+    ) -> Self {
+        Self {
+            id: id.into(),
+            model,
+            rows,
+            notes,
+            charts: Vec::new(),
+            images: Vec::new(),
+            tables: Vec::new(),
+        }
+    }
+
+    /// Sets the charts to write with `--out`: (file stem, chart).
+    #[must_use]
+    pub fn with_charts(mut self, charts: Vec<(String, LineChart)>) -> Self {
+        self.charts = charts;
+        self
+    }
+
+    /// Sets the policy images to write with `--out`: (file stem, title, cells).
+    #[must_use]
+    pub fn with_images(mut self, images: Vec<(String, String, Vec<Vec<Cell>>)>) -> Self {
+        self.images = images;
+        self
+    }
+
+    /// Sets the tables to write with `--out`: (file name, CSV text).
+    #[must_use]
+    pub fn with_tables(mut self, tables: Vec<(String, String)>) -> Self {
+        self.tables = tables;
+        self
+    }
+}
+
 /// Why an experiment could not run.
 #[derive(Debug, thiserror::Error)]
 #[non_exhaustive]

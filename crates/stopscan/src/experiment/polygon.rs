@@ -50,18 +50,15 @@ fn views_spiral() -> Result<Reproduction, ExperimentError> {
             r.tally.scans as f64,
         ));
     }
-    Ok(Reproduction {
-        id: "views-spiral".into(),
-        model: vec![
+    Ok(Reproduction::new(
+        "views-spiral",
+        vec![
             "a rectangular spiral corridor of width 1 (generate::spiral), start at its outer end; the paper's depth-first algorithm".into(),
             "the paper (Fig. 9): no algorithm explores the spiral with fewer than r + 1 views".into(),
         ],
         rows,
-        notes: vec!["each turn hides the next leg, so every view removes exactly one window: r + 1 views, the paper's bound met with equality".into()],
-        charts: vec![],
-        images: vec![],
-        tables: vec![],
-    })
+        vec!["each turn hides the next leg, so every view removes exactly one window: r + 1 views, the paper's bound met with equality".into()],
+    ))
 }
 
 fn views_star() -> Result<Reproduction, ExperimentError> {
@@ -100,21 +97,18 @@ fn views_star() -> Result<Reproduction, ExperimentError> {
             optimum,
         ));
     }
-    Ok(Reproduction {
-        id: "views-star".into(),
-        model: vec![
+    Ok(Reproduction::new(
+        "views-star",
+        vec![
             "a star with r spikes around a hub (generate::star: tips at radius 10, necks at radius 2), start near one tip".into(),
             "the paper (Fig. 11): two views suffice (the start and the star point), while its algorithm takes r + 1, hence the competitive ratio (r + 1)/2".into(),
         ],
         rows,
-        notes: vec![
+        vec![
             "the optimum of 2 is reproduced exactly: the start and the hub's centre cover the star".into(),
             "our depth-first run needs fewer than r + 1 views here: the paper's r + 1 assumes each viewpoint on a window sees only its own spike; ours lies on the window and sees across the hub into the opposite spikes, which removes their windows too. Placing each viewpoint deep behind its window (the Far placement rows) still sees across the hub on this star (3–6 views for r = 3–12). The paper notes that the choice of the viewpoint on the window decides the count (its Figs. 7 and 8) and does not give the star's proportions; r + 1 remains the upper bound, and the spiral shows it is reached".into(),
         ],
-        charts: vec![],
-        images: vec![],
-        tables: vec![],
-    })
+    ))
 }
 
 /// The environments of a benchmark folder: `*.pol` art-gallery polygons and ROS maps
@@ -223,18 +217,15 @@ fn views_benchmarks(data: &std::path::Path) -> Result<Reproduction, ExperimentEr
         ),
     ];
     notes.extend(failed.into_iter().map(|f| format!("failed: {f}")));
-    Ok(Reproduction {
-        id: "views-benchmarks".into(),
-        model: vec![
+    Ok(Reproduction::new(
+        "views-benchmarks",
+        vec![
             format!("every *.pol and ROS *.yaml below {}; start: the file's first query point, else the centroid of the first triangle of the free space", data.display()),
             "full visibility, the default cost model (1 s per scan, 1 m/s); every registered strategy".into(),
         ],
         rows,
         notes,
-        charts: vec![],
-        images: vec![],
-        tables: vec![],
-    })
+    ))
 }
 
 /// The offline references' rows of one environment.

@@ -75,9 +75,9 @@ pub(super) fn corner_policy_figure(id: &str) -> Result<Reproduction, ExperimentE
             ));
         }
     }
-    Ok(Reproduction {
-        id: id.into(),
-        model: vec![
+    Ok(Reproduction::new(
+        id,
+        vec![
             format!("D = 10 m, v = 0.5 m/s, τ = 2 s, δ = 5°, distribution {dist_no} of Fig. 5"),
             "both readings of the transition probabilities: conditional (exact) and printed".into(),
             "MDP2 image rows are the robot's stop i (downwards), columns the last scan's stop j"
@@ -85,10 +85,8 @@ pub(super) fn corner_policy_figure(id: &str) -> Result<Reproduction, ExperimentE
         ],
         rows,
         notes,
-        charts: vec![],
-        images,
-        tables: vec![],
-    })
+    )
+    .with_images(images))
 }
 
 /// The MDP reading of Figs. 7 and 8: Bayes-correct probabilities, so that MDP2's policy is
@@ -227,14 +225,14 @@ pub(super) fn corner_fig_7() -> Result<Reproduction, ExperimentError> {
         "reconstruction time τ (s)",
         series,
     );
-    Ok(Reproduction {
-        id: "corner-fig-7".into(),
-        model: vec![
+    Ok(Reproduction::new(
+        "corner-fig-7",
+        vec![
             "Fig. 7's caption is cut; we keep distribution 3 (uniform, no prior knowledge) and vary τ from 0.5 s to 20 s".into(),
             "D = 10 m, v = 0.5 m/s, δ = τv/D, MDP step 5°, nominal last step; both MDPs use the Bayes-correct probabilities (POLICY2 is then the optimum over all stop lists on the grid; Tables II–IV declare the printed ones to match the paper's numbers, and this figure prints none)".into(),
         ],
         rows,
-        notes: vec![
+        vec![
             format!(
                 "POLICY2 equals POLICY1 for every τ ≥ {from:.2} s: from there both go straight to the corner and scan once ({straight_time:.2} s + τ){}. The threshold is computed by bisection and holds for every larger τ (in each MDP's own model any other policy scans at least once more on some θ, so its value grows faster with τ than going straight)",
                 first_equal.map_or(String::new(), |t| format!(", which is every swept τ ≥ {t} s"))
@@ -246,10 +244,8 @@ pub(super) fn corner_fig_7() -> Result<Reproduction, ExperimentError> {
             format!("the paper's trend, POLICY2 outperforming POLICY1 more as reconstruction gets costly, {trend}"),
             format!("with the printed MDP probabilities of Tables II–IV, POLICY2 equals POLICY1 for every τ ≥ {from_printed:.2} s"),
         ],
-        charts: vec![("corner-fig-7".into(), chart)],
-        images: vec![],
-        tables: vec![],
-    })
+    )
+    .with_charts(vec![("corner-fig-7".into(), chart)]))
 }
 
 /// A belief N(µ, 5°) on 5° buckets.
@@ -378,16 +374,16 @@ pub(super) fn corner_fig_8() -> Result<Reproduction, ExperimentError> {
     }
     let (same, total, except) = fig8_shift_note(FIGURE_READING)?;
     let (same_printed, _, _) = fig8_shift_note(Reading::Literal)?;
-    Ok(Reproduction {
-        id: "corner-fig-8".into(),
-        model: vec![
+    Ok(Reproduction::new(
+        "corner-fig-8",
+        vec![
             "D = 10 m, v = 0.5 m/s, τ = 2 s, δ = 0.1, MDP step 5°, beliefs N(µ, 5°) for µ = 30°..90° on 5° buckets".into(),
             "exact expected times under the truth instead of 1000-sample averages".into(),
             "both MDPs use the Bayes-correct probabilities (Tables II–IV declare the printed ones to match the paper's numbers; this figure prints none); UNIREC and EXPREC do not depend on the belief".into(),
             "bucket convention: a belief is uniform inside 5° buckets [k·5°, (k+1)·5°]; MDP stop i is at i·5°, and a scan there sees every θ ≤ i·5°".into(),
         ],
         rows,
-        notes: vec![
+        vec![
             format!(
                 "{}POLICY1 for N(µ, 5°) has the same stop list as POLICY2 for N(µ − 5°, 5°) at {same} of {total} beliefs µ = 30°..90°, so the same expected time under any truth. Equal expected times at µ below 85° ({}); the exceptions: {}",
                 if all_equal {
@@ -407,10 +403,8 @@ pub(super) fn corner_fig_8() -> Result<Reproduction, ExperimentError> {
                 "with the printed MDP probabilities of Tables II–IV the two stop lists coincide at {same_printed} of {total} beliefs"
             ),
         ],
-        charts,
-        images: vec![],
-        tables: vec![],
-    })
+    )
+    .with_charts(charts))
 }
 
 const TABLE_1: [(f64, f64); 6] = [
@@ -428,18 +422,15 @@ pub(super) fn circle_table_1() -> Reproduction {
         rows.push(Row::new(format!("{} scans: maximal d", t.scans), Some(d), t.distance));
         rows.push(Row::new(format!("{} scans: c at upper bound", t.scans), Some(c), t.ratio));
     }
-    Reproduction {
-        id: "circle-table-1".into(),
-        model: vec![
+    Reproduction::new(
+        "circle-table-1",
+        vec![
             "units: scan cost 1, speed 1; 'scans' counts intermediate scans (the scan at the corner is extra), as Table 1 does".into(),
             "c(d) by bisection of recursion (1) to adjacent floats; thresholds by bisection in d of the scan count".into(),
         ],
         rows,
-        notes: vec!["the paper rounds to six digits; every row agrees to all printed digits".into()],
-        charts: vec![],
-        images: vec![],
-        tables: vec![],
-    }
+        vec!["the paper rounds to six digits; every row agrees to all printed digits".into()],
+    )
 }
 
 pub(super) fn circle_fig_7(seed: u64) -> Reproduction {
@@ -519,14 +510,14 @@ pub(super) fn circle_fig_7(seed: u64) -> Reproduction {
             },
         ),
     ];
-    Reproduction {
-        id: "circle-fig-7".into(),
-        model: vec![
+    Reproduction::new(
+        "circle-fig-7",
+        vec![
             "units: scan cost 1, speed 1; c(d) on 2000 distances in (0, 10] and in (0, 100]".into(),
             "the global optimum places the scan points anywhere in the plane (restarted Nelder–Mead over 2k coordinates, chained over k = 1…6 with warm starts, exact worst-case ratio)".into(),
         ],
         rows,
-        notes: vec![
+        vec![
             format!(
                 "global optimum at d = 4.4 with at most k intermediate scans: {}; the best, {:.4} with {} scans, is {:.1}% below the paper's Fig. 6 solution (≈ 2.12), so that solution is close to but not the global optimum of its own model; the circle strategy (3 scans) is {:.1}% above the optimum there, not 'within about 2%'",
                 by_scans.iter().map(|&(k, r)| format!("{k} → {r:.6}")).collect::<Vec<_>>().join(", "),
@@ -540,10 +531,8 @@ pub(super) fn circle_fig_7(seed: u64) -> Reproduction {
             "every worst-case ratio of the optimiser is exact (breakpoint enumeration) for the printed points (rounded to 1e-9); a property test compares it with an independent brute force over edge angles in (0°, 180°] (tests/corner.rs)".into(),
             "Theorem 1: with c < 2 the recursion collapses before the corner and never gets further than 1/(2 − c) from the start".into(),
         ],
-        charts,
-        images: vec![],
-        tables: vec![],
-    }
+    )
+    .with_charts(charts)
 }
 
 #[cfg(test)]

@@ -544,15 +544,7 @@ pub(super) fn corner_table(
         }
         notes.push(policy2_note(&cells)?);
     }
-    Ok(Reproduction {
-        id: table.id().into(),
-        model,
-        rows,
-        notes,
-        charts: vec![],
-        images: vec![],
-        tables: vec![],
-    })
+    Ok(Reproduction::new(table.id(), model, rows, notes))
 }
 
 #[cfg(test)]
