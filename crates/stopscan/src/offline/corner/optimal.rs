@@ -41,7 +41,7 @@ fn reach(d: f64, p: [f64; 2]) -> f64 {
 ///
 /// The model (circle paper §3.1, over every edge the corner can hide): the hidden edge leaves
 /// the corner `B = (d, 0)` at an angle θ ∈ (0, π] from `BA`; a scan at `P` sees it exactly when
-/// θ ≤ ∠ABP ([`reach`]), and the scan at the corner sees every edge. The robot scans at each
+/// θ ≤ ∠ABP (`reach`), and the scan at the corner sees every edge. The robot scans at each
 /// point in turn and then at the corner, until it sees the edge; its cost is one per scan plus
 /// the distance driven (scan cost 1, speed 1). The optimum for θ is one scan at the point of
 /// `{P : ∠ABP ≥ θ}` nearest to `A`: the foot of the perpendicular, `1 + d·sin θ`, for

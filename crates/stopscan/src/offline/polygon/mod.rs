@@ -13,7 +13,7 @@
 //! - [`greedy`]: a valid viewpoint set, as an upper *reference* (not a bound): from the start,
 //!   repeatedly add the candidate seen from a chosen one that sees the most area not yet
 //!   covered;
-//! - [`optimum`]: the exact minimum over the same candidates by integer programming, within a
+//! - [`optimum()`]: the exact minimum over the same candidates by integer programming, within a
 //!   time budget (the best set found and the best proven lower bound when it runs out).
 //!
 //! **Candidates** are the start, every vertex of the domain (a guard on a vertex, seen in the
@@ -389,7 +389,7 @@ pub fn greedy(vis: &Visibility, start: Point) -> Result<ViewSet, OfflineError> {
     Ok(greedy_on(&mut Problem::new(vis, start)?)?.set)
 }
 
-/// The exact minimum over the candidates (see [`optimum`]) within `seconds`, with the greedy
+/// The exact minimum over the candidates (see [`mod@optimum`]) within `seconds`, with the greedy
 /// reference as the first incumbent and the geometric lower bounds as the first bound.
 ///
 /// # Errors
