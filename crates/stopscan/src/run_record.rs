@@ -10,6 +10,7 @@
 use serde::{Deserialize, Serialize};
 
 use crate::kernel::Point;
+use crate::kernel::tolerance::SAME_VALUE_REL;
 use crate::offline::grid::GridBounds;
 use crate::offline::polygon::{References, upper_bound};
 use crate::protocol::CostModel;
@@ -509,7 +510,8 @@ impl GridRunRecord {
                 c_in: counts.map(|c| c.1),
             },
             bounds: GridBoundsRecord {
-                within_lemma1: paper_model.then_some(time <= bounds.lemma1_upper * (1.0 + 1e-12)),
+                within_lemma1: paper_model
+                    .then_some(time <= bounds.lemma1_upper * (1.0 + SAME_VALUE_REL)),
                 competitive_ratio: (bounds.lemma2_lower > 0.0).then(|| time / bounds.lemma2_lower),
                 eccentricity: roi.distances().values().copied().max().unwrap_or(0) as usize,
                 bounds,

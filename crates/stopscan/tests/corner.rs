@@ -243,7 +243,7 @@ fn circle_strategy_is_c_competitive_in_the_corner_model() {
 fn mdp2_sizes_of_the_issue() {
     for (n, states) in [(900, 405_450), (1800, 1_620_900)] {
         let m = CornerMdp {
-            setup: paper_setup(2.0),
+            setup: paper_setup(2.0).unwrap(),
             step: FRAC_PI_2 / f64::from(n),
             memory: Memory::Last,
             reading: Reading::Conditional,
@@ -259,7 +259,7 @@ fn mdp2_sizes_of_the_issue() {
 fn exact_mdp2_value_is_the_true_expected_time() {
     for belief in ["uniform:0,180", "normal:60,5", "mix:0.5*normal:30,3+0.5*normal:90,3"] {
         let b = AngleDistribution::parse(belief).unwrap();
-        let setup = paper_setup(2.0);
+        let setup = paper_setup(2.0).unwrap();
         let m = CornerMdp {
             setup,
             step: 1f64.to_radians(),
@@ -275,7 +275,7 @@ fn exact_mdp2_value_is_the_true_expected_time() {
 
 #[test]
 fn monte_carlo_matches_the_exact_expectation_and_is_deterministic() {
-    let setup = paper_setup(2.0);
+    let setup = paper_setup(2.0).unwrap();
     let truth = AngleDistribution::parse("mix:0.5*normal:30,3+0.5*normal:90,3").unwrap();
     let list = unirec(setup.delta(), Route::Arc, LastStep::Nominal).unwrap();
     let e = expected(&list, &setup, &truth).time;
@@ -288,7 +288,7 @@ fn monte_carlo_matches_the_exact_expectation_and_is_deterministic() {
 #[test]
 fn move_time_is_charged_per_move() {
     let with = CornerSetup::new(10.0, CostModel::new(2.0, 1.5, 0.5).unwrap()).unwrap();
-    let without = paper_setup(2.0);
+    let without = paper_setup(2.0).unwrap();
     let list = unirec(0.1, Route::Arc, LastStep::Capped).unwrap();
     for (k, (a, b)) in list.costs(&with).iter().zip(list.costs(&without)).enumerate() {
         assert!((a - b - 1.5 * (k + 1) as f64).abs() < 1e-9);

@@ -24,6 +24,10 @@ pub type Intervals = Vec<[f64; 2]>;
 /// threshold to [`rounding`] of them.
 pub const GAP_TOLERANCE: f64 = 1e-9;
 
+/// How far (in lengths of the segment) a probe steps off a segment when rounding put it on an
+/// edge of the polygon: at least this, and more than [`rounding`] of the coordinates.
+const SIDE_STEP: f64 = 1e-9;
+
 /// Appends to `out` the parameter intervals of segment `a → b` covered on its right side by
 /// the closed polygon `poly` (any orientation, simple), in the limit sense of the module
 /// documentation. `bounds` is the polygon's bounding box, for a quick rejection.
@@ -100,7 +104,7 @@ pub fn side_cover(a: Point, b: Point, poly: &[Point], bounds: [Point; 2], out: &
                 // Rounding put the middle on an edge the segment crosses: step to the side, by
                 // more than the rounding of the coordinates.
                 RingSide::Boundary => {
-                    let e = 1e-9_f64.max(4.0 * rounding(magnitude(&[a, b])) / len2.sqrt());
+                    let e = SIDE_STEP.max(4.0 * rounding(magnitude(&[a, b])) / len2.sqrt());
                     ring_side(poly, [m[0] + e * dy, m[1] - e * dx]) == RingSide::Inside
                 }
             }
@@ -266,6 +270,10 @@ pub fn uncovered_area(domain: &crate::geometry::Domain, seen: &[Vec<Point>]) -> 
     total
 }
 
+/// The fractions of an edge's length by which [`probe`] steps inward, largest first, until
+/// the point lies inside the shape and outside its holes.
+const PROBE_STEPS: [f64; 4] = [1e-3, 1e-6, 1e-9, 1e-12];
+
 /// A point strictly inside a shape (outer ring, then holes): next to the middle of one of its
 /// longest outer edges, stepped inward by a small fraction of the edge's length.
 fn probe(shape: &[Vec<Point>]) -> Option<Point> {
@@ -282,7 +290,7 @@ fn probe(shape: &[Vec<Point>]) -> Option<Point> {
         let (a, b) = (outer[i], outer[(i + 1) % n]);
         let (dx, dy) = (b[0] - a[0], b[1] - a[1]);
         let m = [0.5 * (a[0] + b[0]), 0.5 * (a[1] + b[1])];
-        for e in [1e-3, 1e-6, 1e-9, 1e-12] {
+        for e in PROBE_STEPS {
             let s = if left { e } else { -e };
             let p = [m[0] - s * dy, m[1] + s * dx];
             if ring_side(outer, p) == RingSide::Inside

@@ -6,6 +6,12 @@
 //! MDPs (self-loops included), evaluates each policy exactly when its graph is acyclic and
 //! by Gauss–Seidel sweeps otherwise.
 
+use crate::kernel::tolerance::SAME_VALUE_REL;
+
+/// How far the probabilities of an action's transitions may sum from one (they are the
+/// caller's floating-point arithmetic, a difference of CDF values say).
+const PROBABILITY_SUM_TOLERANCE: f64 = 1e-9;
+
 /// Why an MDP could not be solved.
 #[derive(Debug, Clone, PartialEq, thiserror::Error)]
 #[non_exhaustive]
@@ -105,7 +111,7 @@ impl Mdp {
                     }
                     sum += p;
                 }
-                if (sum - 1.0).abs() > 1e-9 {
+                if (sum - 1.0).abs() > PROBABILITY_SUM_TOLERANCE {
                     return Err(bad(format!("probabilities sum to {sum}, not 1")));
                 }
             }
@@ -169,7 +175,7 @@ pub fn policy_iteration(mdp: &Mdp) -> Result<MdpSolution, MdpError> {
             let mut best = (current, *chosen);
             for a in mdp.action_range(s) {
                 let q = mdp.q(a, &values);
-                if q < best.0 - 1e-12 * (1.0 + best.0.abs()) {
+                if q < best.0 - SAME_VALUE_REL * (1.0 + best.0.abs()) {
                     best = (q, a - base);
                 }
             }

@@ -234,6 +234,25 @@ impl<'a> PathPlanner<'a> {
     ///
     /// # Complexity
     /// O(r) exact walks from each end, then A* over the graph.
+    ///
+    /// # Example
+    /// Across the reflex corner (2, 2) of an L-shaped room: two legs of √3.25 m.
+    /// ```
+    /// use stopscan::algorithm::shortest_path::PathPlanner;
+    /// use stopscan::algorithm::visibility::Visibility;
+    /// use stopscan::geometry::Domain;
+    ///
+    /// let l = vec![[0.0, 0.0], [4.0, 0.0], [4.0, 2.0], [2.0, 2.0], [2.0, 4.0], [0.0, 4.0]];
+    /// let vis = Visibility::new(Domain::new(l, vec![])?)?;
+    /// let planner = PathPlanner::new(&vis);
+    /// let path = planner.shortest_path([3.5, 1.0], [1.0, 3.5]).unwrap();
+    /// assert_eq!(path.points, [[3.5, 1.0], [2.0, 2.0], [1.0, 3.5]]);
+    /// assert!((path.length - 13f64.sqrt()).abs() < 1e-12);
+    /// // A straight segment when one exists (here it grazes the corner), none from outside.
+    /// assert_eq!(planner.shortest_path([3.0, 1.0], [1.0, 3.0]).unwrap().points.len(), 2);
+    /// assert!(planner.shortest_path([3.0, 3.0], [1.0, 1.0]).is_none());
+    /// # Ok::<(), Box<dyn std::error::Error>>(())
+    /// ```
     pub fn shortest_path(&self, s: Point, t: Point) -> Option<Path> {
         let mesh = self.vis.mesh();
         if matches!(mesh.locate(s), MeshLocation::Outside)

@@ -9,6 +9,7 @@ use rayon::prelude::*;
 use serde::{Deserialize, Serialize};
 
 use super::{ExperimentError, Reproduction, Row, sample_seed};
+use crate::kernel::tolerance::SAME_VALUE_REL;
 use crate::offline::grid::GridBounds;
 use crate::protocol::CostModel;
 use crate::render::{LineChart, Series};
@@ -61,13 +62,12 @@ fn trial(
     ratio: f64,
     seed: u64,
 ) -> Result<(f64, GridBounds), ExperimentError> {
-    let roi = GridRoi::random(cells, seed).map_err(|e| ExperimentError::Model(e.to_string()))?;
+    let roi = GridRoi::random(cells, seed)?;
     let heading = 90.0 * (seed >> 60 & 3) as f64;
     let drift = Drift { speed: 1.0 / ratio, heading_deg: heading };
     let mut world = GridWorld::new(roi, drift, GridSensor::Ideal, seed);
     let cost = CostModel { scan_time: 0.0, move_time: 0.0, speed: 1.0 };
-    let m = explore(&mut world, robots, cost, Recording::NONE)
-        .map_err(|e| ExperimentError::Model(e.to_string()))?;
+    let m = explore(&mut world, robots, cost, Recording::NONE)?;
     Ok((m.team.makespan(), GridBounds::of_world(&world, robots, &cost)))
 }
 
@@ -99,7 +99,10 @@ fn point(
         upper: mean(&|r| r.1.lemma1_upper),
         lower: mean(&|r| r.1.lemma2_lower),
         lawn_mower: mean(&|r| r.1.lawn_mower),
-        within_upper: runs.iter().filter(|r| r.0 <= r.1.lemma1_upper * (1.0 + 1e-12)).count(),
+        within_upper: runs
+            .iter()
+            .filter(|r| r.0 <= r.1.lemma1_upper * (1.0 + SAME_VALUE_REL))
+            .count(),
     })
 }
 
@@ -113,7 +116,8 @@ pub const RATIOS: [f64; 10] = [1.5, 2.0, 2.5, 3.0, 3.5, 4.0, 4.5, 5.0, 5.5, 6.0]
 /// All three sweeps, `trials` regions per point.
 ///
 /// # Errors
-/// [`ExperimentError::Model`] if a run fails (it never should).
+/// [`ExperimentError::Roi`] or [`ExperimentError::Mission`] if a region or a run fails (it
+/// never should).
 pub fn fig7_rows(trials: usize, seed: u64) -> Result<Vec<Fig7Row>, ExperimentError> {
     let (c0, r0, s0) = FIXED;
     let mut rows = Vec::new();
@@ -195,7 +199,7 @@ fn chart(rows: &[Fig7Row], sweep: &str, title: &str, x_label: &str) -> LineChart
 /// Reproduces Fig. 7 (b)–(d) with `trials` regions per point (the paper: 100).
 ///
 /// # Errors
-/// [`ExperimentError::Model`] if a run fails.
+/// [`ExperimentError::Roi`] or [`ExperimentError::Mission`] if a region or a run fails.
 pub fn reproduce(trials: usize, seed: u64) -> Result<Reproduction, ExperimentError> {
     let rows = fig7_rows(trials, seed)?;
     let total: usize = rows.iter().map(|r| r.trials).sum();
@@ -215,30 +219,29 @@ pub fn reproduce(trials: usize, seed: u64) -> Result<Reproduction, ExperimentErr
     let ratio: Vec<&Fig7Row> = rows.iter().filter(|r| r.sweep == "speed_ratio").collect();
     let gap_shrinks =
         ratio.first().zip(ratio.last()).is_some_and(|(a, b)| b.upper - b.lower < a.upper - a.lower);
-    Ok(Reproduction {
-        id: "roi-fig-7".into(),
-        model: vec![
+    Ok(Reproduction::new(
+        "roi-fig-7",
+        vec![
             format!("Fixed values as in the paper: {} cells, {} robots, S_r/S_p = {} when not swept; S_r = 1 m/s, cells of 1 m.", FIXED.0, FIXED.1, FIXED.2),
             format!("{trials} random regions per point (Eden growth from the start cell, seeded per trial), drifting north, south, east or west at random (section 6)."),
             "The paper does not give the swept ranges; ours: cells 40–400, robots 1–32, S_r/S_p 1.5–6.".into(),
             "Lemma 1 uses each trial's own d_max (the depth of the tree the robots built); logarithms are base 2.".into(),
             "The lawn mower sweeps the region's bounding rectangle split into R strips (the better of the two directions), ignoring the flights to the strips (section 6).".into(),
         ],
-        rows: out,
-        notes: vec![
+        out,
+        vec![
             format!("{within} of {total} trials are within their Lemma 1 bound."),
             format!("{closer_to_lower} of {} points have a mean closer to the lower bound than to the upper bound (the paper: closer to the lower bound).", rows.len()),
             format!("Time decreases with the number of robots: {decreasing} (the paper: it does)."),
             format!("The gap between the upper and lower bounds shrinks as S_r/S_p grows: {gap_shrinks} (the paper: it does)."),
         ],
-        charts: vec![
-            ("roi-fig-7b".into(), chart(&rows, "cells", "Fig. 7 (b): time against the number of cells", "cells C")),
-            ("roi-fig-7c".into(), chart(&rows, "robots", "Fig. 7 (c): time against the number of robots", "robots R")),
-            ("roi-fig-7d".into(), chart(&rows, "speed_ratio", "Fig. 7 (d): time against the speed ratio", "S_r / S_p")),
-        ],
-        images: Vec::new(),
-        tables: vec![("roi-fig-7.csv".into(), csv(&rows))],
-    })
+    )
+    .with_charts(vec![
+        ("roi-fig-7b".into(), chart(&rows, "cells", "Fig. 7 (b): time against the number of cells", "cells C")),
+        ("roi-fig-7c".into(), chart(&rows, "robots", "Fig. 7 (c): time against the number of robots", "robots R")),
+        ("roi-fig-7d".into(), chart(&rows, "speed_ratio", "Fig. 7 (d): time against the speed ratio", "S_r / S_p")),
+    ])
+    .with_tables(vec![("roi-fig-7.csv".into(), csv(&rows))]))
 }
 
 #[cfg(test)]

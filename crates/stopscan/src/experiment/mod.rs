@@ -169,6 +169,50 @@ pub struct Reproduction {
     pub tables: Vec<(String, String)>,
 }
 
+impl Reproduction {
+    /// A reproduction: its identifier, the model choices made (one sentence each), the
+    /// compared numbers and the findings. Charts, policy images and tables are added with
+    /// [`with_charts`](Self::with_charts), [`with_images`](Self::with_images) and
+    /// [`with_tables`](Self::with_tables).
+    pub fn new(
+        id: impl Into<String>,
+        model: Vec<String>,
+        rows: Vec<Row>,
+        notes: Vec<String>,
+    ) -> Self {
+        Self {
+            id: id.into(),
+            model,
+            rows,
+            notes,
+            charts: Vec::new(),
+            images: Vec::new(),
+            tables: Vec::new(),
+        }
+    }
+
+    /// Sets the charts to write with `--out`: (file stem, chart).
+    #[must_use]
+    pub fn with_charts(mut self, charts: Vec<(String, LineChart)>) -> Self {
+        self.charts = charts;
+        self
+    }
+
+    /// Sets the policy images to write with `--out`: (file stem, title, cells).
+    #[must_use]
+    pub fn with_images(mut self, images: Vec<(String, String, Vec<Vec<Cell>>)>) -> Self {
+        self.images = images;
+        self
+    }
+
+    /// Sets the tables to write with `--out`: (file name, CSV text).
+    #[must_use]
+    pub fn with_tables(mut self, tables: Vec<(String, String)>) -> Self {
+        self.tables = tables;
+        self
+    }
+}
+
 /// Why an experiment could not run.
 #[derive(Debug, thiserror::Error)]
 #[non_exhaustive]
@@ -176,12 +220,67 @@ pub enum ExperimentError {
     /// The identifier is not known; the message lists the known ones.
     #[error("unknown reproduction {0:?}; known: {1}")]
     UnknownId(String, String),
-    /// A model piece was rejected.
-    #[error("{0}")]
-    Model(String),
-    /// A simulated strategy misbehaved.
+    /// A simulated corner strategy misbehaved.
     #[error(transparent)]
     Sim(#[from] crate::sim::corner::SimError),
+    /// A corner setup (distance, cost model) was rejected.
+    #[error(transparent)]
+    Setup(#[from] crate::protocol::corner::InvalidCornerSetup),
+    /// A belief or a truth was rejected.
+    #[error(transparent)]
+    Distribution(#[from] crate::protocol::corner::InvalidDistribution),
+    /// UNIREC or EXPREC rejected its parameters.
+    #[error(transparent)]
+    StopList(#[from] crate::strategy::corner::InvalidStopList),
+    /// A corner strategy could not be built by name.
+    #[error(transparent)]
+    Strategy(#[from] crate::strategy::corner::registry::BuildError),
+    /// A corner MDP could not be built or solved.
+    #[error(transparent)]
+    Mdp(#[from] crate::strategy::corner::mdp::CornerMdpError),
+    /// Fig. 5 of the corner paper has distributions 1 to 4 only.
+    #[error("Fig. 5 has distributions 1 to 4, not {0}")]
+    NoSuchFig5Distribution(usize),
+    /// The MDP's policy did not go straight to the corner for any scan time up to 10⁶ s (the
+    /// search for the scan time from which it does gave up).
+    #[error("the policy never goes straight to the corner")]
+    NeverStraight,
+    /// A generated environment was rejected.
+    #[error(transparent)]
+    Environment(#[from] crate::geometry::InvalidEnvironment),
+    /// An environment file could not be loaded.
+    #[error(transparent)]
+    Load(#[from] crate::io::LoadError),
+    /// No benchmark environment was found below the data folder.
+    #[error(
+        "no benchmark environments (*.pol, ROS *.yaml) below {}; pass --data DIR",
+        .0.display()
+    )]
+    NoBenchmarks(
+        /// The folder searched.
+        std::path::PathBuf,
+    ),
+    /// The visibility structure or a scan failed.
+    #[error(transparent)]
+    Visibility(#[from] crate::algorithm::visibility::VisibilityError),
+    /// A polygon exploration was cut short.
+    #[error(transparent)]
+    Exploration(#[from] crate::sim::polygon::PolygonRunError),
+    /// A region of interest was rejected.
+    #[error(transparent)]
+    Roi(#[from] crate::world::grid::InvalidRoi),
+    /// A region-of-interest mission failed.
+    #[error(transparent)]
+    Mission(#[from] crate::sim::grid::GridRunError),
+    /// The circle strategy rejected a distance.
+    #[error(transparent)]
+    Circle(#[from] crate::strategy::corner::circle::CircleError),
+    /// The global corner optimum rejected its parameters.
+    #[error(transparent)]
+    Optimal(#[from] crate::offline::corner::optimal::OptimalError),
+    /// A benchmark environment could not be loaded or given a start.
+    #[error(transparent)]
+    SweepLoad(#[from] crate::io::sweep::SweepLoadError),
 }
 
 /// Seeds one sample's generator from the run seed and the sample index, so results do not

@@ -4,6 +4,7 @@
 use super::{ExperimentError, Reproduction, Row};
 use crate::algorithm::region::Region;
 use crate::generate::{spiral, star};
+use crate::kernel::tolerance::AREA_REL;
 use crate::offline::polygon::References;
 use crate::protocol::CostModel;
 use crate::run_record::RunRecord;
@@ -15,16 +16,12 @@ use crate::world::polygon::PolygonWorld;
 /// The reproductions this module knows.
 pub const IDS: &[&str] = &["views-spiral", "views-star", "views-benchmarks"];
 
-fn err(e: impl std::fmt::Display) -> ExperimentError {
-    ExperimentError::Model(e.to_string())
-}
-
 fn explore(
     inst: &crate::generate::Instance,
 ) -> Result<(PolygonWorld, PolygonRun), ExperimentError> {
-    let world = PolygonWorld::new(inst.domain.clone()).map_err(err)?;
-    let r = run(&world, inst.start, &CostModel::default(), &mut DepthFirst::new(), &mut NoObserver)
-        .map_err(err)?;
+    let world = PolygonWorld::new(inst.domain.clone())?;
+    let r =
+        run(&world, inst.start, &CostModel::default(), &mut DepthFirst::new(), &mut NoObserver)?;
     Ok((world, r))
 }
 
@@ -44,7 +41,7 @@ pub fn reproduce(id: &str, data: &std::path::Path) -> Result<Reproduction, Exper
 fn views_spiral() -> Result<Reproduction, ExperimentError> {
     let mut rows = Vec::new();
     for turns in 1..=10 {
-        let inst = spiral(turns).map_err(err)?;
+        let inst = spiral(turns)?;
         let (_, r) = explore(&inst)?;
         let refl = inst.domain.reflex_vertices().len();
         rows.push(Row::new(
@@ -53,24 +50,21 @@ fn views_spiral() -> Result<Reproduction, ExperimentError> {
             r.tally.scans as f64,
         ));
     }
-    Ok(Reproduction {
-        id: "views-spiral".into(),
-        model: vec![
+    Ok(Reproduction::new(
+        "views-spiral",
+        vec![
             "a rectangular spiral corridor of width 1 (generate::spiral), start at its outer end; the paper's depth-first algorithm".into(),
             "the paper (Fig. 9): no algorithm explores the spiral with fewer than r + 1 views".into(),
         ],
         rows,
-        notes: vec!["each turn hides the next leg, so every view removes exactly one window: r + 1 views, the paper's bound met with equality".into()],
-        charts: vec![],
-        images: vec![],
-        tables: vec![],
-    })
+        vec!["each turn hides the next leg, so every view removes exactly one window: r + 1 views, the paper's bound met with equality".into()],
+    ))
 }
 
 fn views_star() -> Result<Reproduction, ExperimentError> {
     let mut rows = Vec::new();
     for spikes in [3, 4, 5, 6, 8, 10, 12] {
-        let inst = star(spikes).map_err(err)?;
+        let inst = star(spikes)?;
         let (world, r) = explore(&inst)?;
         let refl = inst.domain.reflex_vertices().len();
         rows.push(Row::new(
@@ -84,8 +78,7 @@ fn views_star() -> Result<Reproduction, ExperimentError> {
             &CostModel::default(),
             &mut DepthFirst::with_placement(Placement::Far),
             &mut NoObserver,
-        )
-        .map_err(err)?;
+        )?;
         rows.push(Row::new(
             format!("star, r = {refl}: scans, viewpoints deep behind each window (Fig. 11)"),
             Some((refl + 1) as f64),
@@ -95,8 +88,7 @@ fn views_star() -> Result<Reproduction, ExperimentError> {
         let views: Vec<Vec<[f64; 2]>> = [inst.start, [0.0, 0.0]]
             .iter()
             .map(|&p| world.scan(p).map(|o| o.region.polygon))
-            .collect::<Result<_, _>>()
-            .map_err(err)?;
+            .collect::<Result<_, _>>()?;
         let covered = Region::union_all(&views).area() / inst.domain.area();
         let optimum = if (covered - 1.0).abs() < 1e-7 { 2.0 } else { f64::NAN };
         rows.push(Row::new(
@@ -105,21 +97,18 @@ fn views_star() -> Result<Reproduction, ExperimentError> {
             optimum,
         ));
     }
-    Ok(Reproduction {
-        id: "views-star".into(),
-        model: vec![
+    Ok(Reproduction::new(
+        "views-star",
+        vec![
             "a star with r spikes around a hub (generate::star: tips at radius 10, necks at radius 2), start near one tip".into(),
             "the paper (Fig. 11): two views suffice (the start and the star point), while its algorithm takes r + 1, hence the competitive ratio (r + 1)/2".into(),
         ],
         rows,
-        notes: vec![
+        vec![
             "the optimum of 2 is reproduced exactly: the start and the hub's centre cover the star".into(),
             "our depth-first run needs fewer than r + 1 views here: the paper's r + 1 assumes each viewpoint on a window sees only its own spike; ours lies on the window and sees across the hub into the opposite spikes, which removes their windows too. Placing each viewpoint deep behind its window (the Far placement rows) still sees across the hub on this star (3–6 views for r = 3–12). The paper notes that the choice of the viewpoint on the window decides the count (its Figs. 7 and 8) and does not give the star's proportions; r + 1 remains the upper bound, and the spiral shows it is reached".into(),
         ],
-        charts: vec![],
-        images: vec![],
-        tables: vec![],
-    })
+    ))
 }
 
 /// The environments of a benchmark folder: `*.pol` art-gallery polygons and ROS maps
@@ -151,14 +140,11 @@ fn views_benchmarks(data: &std::path::Path) -> Result<Reproduction, ExperimentEr
     use rayon::prelude::*;
     let files = benchmark_files(data);
     if files.is_empty() {
-        return Err(ExperimentError::Model(format!(
-            "no benchmark environments (*.pol, ROS *.yaml) below {}; pass --data DIR",
-            data.display()
-        )));
+        return Err(ExperimentError::NoBenchmarks(data.to_path_buf()));
     }
     let mut inputs: Vec<SweepInput> = Vec::new();
     for f in &files {
-        let (env, start) = crate::io::sweep::read_with_start(f).map_err(err)?;
+        let (env, start) = crate::io::sweep::read_with_start(f)?;
         let name = f.strip_prefix(data).unwrap_or(f).display().to_string();
         inputs.push((name, env.domain, start));
     }
@@ -173,13 +159,11 @@ fn views_benchmarks(data: &std::path::Path) -> Result<Reproduction, ExperimentEr
     };
     let sweep_rows =
         sweep(&inputs, &names, &CostModel::default(), None, limits.bounds_seconds, &|| {});
-    let refs: Vec<Result<References, String>> = inputs
+    let refs: Vec<Result<References, crate::offline::polygon::OfflineError>> = inputs
         .par_iter()
         .map(|(_, d, start)| {
-            let vis = crate::algorithm::visibility::Visibility::new(d.clone())
-                .map_err(|e| e.to_string())?;
+            let vis = crate::algorithm::visibility::Visibility::new(d.clone())?;
             crate::offline::polygon::references(&vis, *start, None, limits, &mut |_| {})
-                .map_err(|e| e.to_string())
         })
         .collect();
     let mut rows = Vec::new();
@@ -191,7 +175,7 @@ fn views_benchmarks(data: &std::path::Path) -> Result<Reproduction, ExperimentEr
                 continue;
             }
             within += usize::from(row.within_bound);
-            complete += usize::from(row.open_windows == 0 && row.coverage >= 1.0 - 1e-9);
+            complete += usize::from(row.open_windows == 0 && row.coverage >= 1.0 - AREA_REL);
             rows.push(Row::new(
                 format!("{name} · {}: scans (paper: the bound r + 1)", row.strategy),
                 Some(row.scans_upper as f64),
@@ -219,7 +203,8 @@ fn views_benchmarks(data: &std::path::Path) -> Result<Reproduction, ExperimentEr
             "{within} of {runs} runs within the paper's bound (r + 1 for every strategy; it is proved for depth_first only)"
         ),
         format!(
-            "{complete} of {runs} runs complete: no window left open (the exact certificate) and coverage ≥ 1 − 1e-9"
+            "{complete} of {runs} runs complete: no window left open (the exact certificate) and coverage ≥ 1 − {}",
+            crate::kernel::Num(AREA_REL)
         ),
         format!(
             "offline references: greedy for up to {} vertices, the exact optimum for up to {} within {OPTIMUM_NODES} branch-and-bound nodes each (solver {}; a machine-independent budget); lower bounds within {} s (witnesses with disjoint visibility regions, a valid fractional packing, the distance to the farthest witness's region)",
@@ -230,18 +215,15 @@ fn views_benchmarks(data: &std::path::Path) -> Result<Reproduction, ExperimentEr
         ),
     ];
     notes.extend(failed.into_iter().map(|f| format!("failed: {f}")));
-    Ok(Reproduction {
-        id: "views-benchmarks".into(),
-        model: vec![
+    Ok(Reproduction::new(
+        "views-benchmarks",
+        vec![
             format!("every *.pol and ROS *.yaml below {}; start: the file's first query point, else the centroid of the first triangle of the free space", data.display()),
             "full visibility, the default cost model (1 s per scan, 1 m/s); every registered strategy".into(),
         ],
         rows,
         notes,
-        charts: vec![],
-        images: vec![],
-        tables: vec![],
-    })
+    ))
 }
 
 /// The offline references' rows of one environment.

@@ -148,6 +148,31 @@ impl Domain {
     /// # Complexity
     /// O(n·k) with k the number of edges sharing a grid cell (about O(n) for ordinary maps),
     /// plus O(h·n) for hole containment.
+    ///
+    /// # Example
+    /// A 10 m × 10 m room given clockwise, with a 2 m × 2 m pillar; then a bow tie.
+    /// ```
+    /// use stopscan::geometry::{Domain, InvalidEnvironment};
+    ///
+    /// let room = vec![[0.0, 0.0], [0.0, 10.0], [10.0, 10.0], [10.0, 0.0]];
+    /// let pillar = vec![[4.0, 4.0], [6.0, 4.0], [6.0, 6.0], [4.0, 6.0]];
+    /// let d = Domain::new(room, vec![pillar])?;
+    /// assert_eq!(d.area(), 96.0);
+    /// // The outer ring is turned counter-clockwise, the hole clockwise.
+    /// assert_eq!(d.outer(), [[10.0, 0.0], [10.0, 10.0], [0.0, 10.0], [0.0, 0.0]]);
+    /// assert_eq!(d.holes()[0], [[4.0, 6.0], [6.0, 6.0], [6.0, 4.0], [4.0, 4.0]]);
+    /// // Every corner of the pillar is a reflex vertex of the free space: (ring, index).
+    /// assert_eq!(d.reflex_vertices(), [(1, 0), (1, 1), (1, 2), (1, 3)]);
+    ///
+    /// let bow_tie = vec![[0.0, 0.0], [2.0, 2.0], [2.0, 0.0], [0.0, 2.0]];
+    /// let err = Domain::new(bow_tie, vec![]).unwrap_err();
+    /// assert_eq!(err, InvalidEnvironment::SelfIntersection { ring: 0, a: 0, b: 2 });
+    /// assert_eq!(
+    ///     err.to_string(),
+    ///     "ring 0 is not simple: edge 0 (from vertex 0) meets edge 2 (from vertex 2)"
+    /// );
+    /// # Ok::<(), InvalidEnvironment>(())
+    /// ```
     pub fn new(outer: Vec<Point>, holes: Vec<Vec<Point>>) -> Result<Self, InvalidEnvironment> {
         let mut rings = Vec::with_capacity(holes.len() + 1);
         rings.push(outer);

@@ -6,6 +6,8 @@
 
 use robust::Coord;
 
+pub mod tolerance;
+
 /// A point of the plane.
 pub type Point = [f64; 2];
 

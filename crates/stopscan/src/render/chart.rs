@@ -92,6 +92,8 @@ pub fn write_chart(chart: &LineChart, stem: &Path) -> Result<Vec<PathBuf>, Rende
 }
 
 fn bounds(chart: &LineChart) -> Option<(f64, f64, f64, f64)> {
+    // Data that span less than this are flat: pad them by half their magnitude.
+    const FLAT_SPAN: f64 = 1e-12;
     let pts =
         chart.series.iter().flat_map(|s| &s.points).filter(|p| p.0.is_finite() && p.1.is_finite());
     let (mut x0, mut x1, mut y0, mut y1) = (f64::MAX, f64::MIN, f64::MAX, f64::MIN);
@@ -104,7 +106,7 @@ fn bounds(chart: &LineChart) -> Option<(f64, f64, f64, f64)> {
         return None;
     }
     let pad = |a: f64, b: f64| {
-        if b - a < 1e-12 { 0.5 * a.abs().max(1.0) } else { 0.04 * (b - a) }
+        if b - a < FLAT_SPAN { 0.5 * a.abs().max(1.0) } else { 0.04 * (b - a) }
     };
     let (px, py) = (pad(x0, x1), pad(y0, y1));
     Some((x0 - px, x1 + px, y0 - py, y1 + py))

@@ -1,6 +1,8 @@
 //! Where things go on a chart, in pixels, with no drawing backend: axis ticks and their
 //! labels, and the corner the legend takes so that it covers no data.
 
+use crate::kernel::tolerance::COUNT_SLACK;
+
 /// Axis ticks on `[lo, hi]`: the multiples of the finest step `m·10^k` (m = 1, 2 or 5) that
 /// gives at most `max` ticks, and the number of decimals that step needs (0 for whole steps,
 /// so counts print as `5`, not `5.0`).
@@ -10,7 +12,8 @@ pub fn ticks(lo: f64, hi: f64, max: usize) -> (Vec<f64>, usize) {
     loop {
         for m in [1.0, 2.0, 5.0] {
             let step = m * 10f64.powi(k);
-            let (first, last) = ((lo / step - 1e-9).ceil(), (hi / step + 1e-9).floor());
+            let (first, last) =
+                ((lo / step - COUNT_SLACK).ceil(), (hi / step + COUNT_SLACK).floor());
             if last - first + 1.0 <= max as f64 {
                 let decimals = (-k).max(0) as usize;
                 let ticks = (first as i64..=last as i64).map(|i| i as f64 * step).collect();

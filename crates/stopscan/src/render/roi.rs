@@ -12,6 +12,12 @@ use crate::world::grid::GridRoi;
 /// Above this many flown cells in all, flights are not drawn (the picture would be too big).
 const MAX_DRAWN_STEPS: usize = 200_000;
 
+/// The shortest run the animation divides by (seconds): a run of no time still draws.
+const MIN_DURATION: f64 = 1e-9;
+
+/// The shortest path the key points divide by (cells): a robot that never moved still draws.
+const MIN_PATH_LENGTH: f64 = 1e-12;
+
 const COLOURS: [&str; 8] =
     ["#1f77b4", "#d62728", "#2ca02c", "#ff7f0e", "#9467bd", "#8c564b", "#e377c2", "#17becf"];
 
@@ -78,7 +84,7 @@ pub fn roi_svg(roi: &GridRoi, mapped: Option<&[Cell]>, record: &GridRunRecord) -
     let steps: usize = record.robots.iter().map(|r| r.cells.len()).sum();
     if steps <= MAX_DRAWN_STEPS {
         for r in &record.robots {
-            flight(&mut out, &f, r, record.metrics.time.max(1e-9));
+            flight(&mut out, &f, r, record.metrics.time.max(MIN_DURATION));
         }
     } else {
         let _ = writeln!(
@@ -171,6 +177,6 @@ fn key_points(cells: &[Cell]) -> String {
         let l = f64::from(w[1][0] - w[0][0]).hypot(f64::from(w[1][1] - w[0][1]));
         acc.push(acc.last().copied().unwrap_or(0.0) + l);
     }
-    let total = acc.last().copied().unwrap_or(0.0).max(1e-12);
+    let total = acc.last().copied().unwrap_or(0.0).max(MIN_PATH_LENGTH);
     acc.iter().map(|a| format!("{:.6}", a / total)).collect::<Vec<_>>().join(";")
 }

@@ -6,12 +6,16 @@ use std::fmt::Write;
 use crate::algorithm::visibility::{BoundaryPiece, VisibilityRegion};
 use crate::geometry::Domain;
 
+/// The smallest width or height a scene is scaled from (metres), so that a degenerate domain
+/// does not divide by zero.
+const MIN_EXTENT: f64 = 1e-9;
+
 /// An SVG picture of the domain (free space white, holes grey) with each region translucent,
 /// its windows dashed and its viewpoint marked.
 pub fn scene_svg(domain: &Domain, regions: &[VisibilityRegion]) -> String {
     const COLOURS: [&str; 6] = ["#1f77b4", "#d62728", "#2ca02c", "#ff7f0e", "#9467bd", "#8c564b"];
     let [lo, hi] = domain.bounds();
-    let (w, h) = ((hi[0] - lo[0]).max(1e-9), (hi[1] - lo[1]).max(1e-9));
+    let (w, h) = ((hi[0] - lo[0]).max(MIN_EXTENT), (hi[1] - lo[1]).max(MIN_EXTENT));
     let scale = 800.0 / w.max(h);
     let (pw, ph) = (w * scale + 20.0, h * scale + 20.0);
     let x = |v: f64| 10.0 + (v - lo[0]) * scale;
@@ -74,7 +78,7 @@ pub fn scene_svg(domain: &Domain, regions: &[VisibilityRegion]) -> String {
 pub fn exploration_svg(domain: &Domain, regions: &[VisibilityRegion], path: &[[f64; 2]]) -> String {
     let base = scene_svg(domain, &[]);
     let [lo, hi] = domain.bounds();
-    let (w, h) = ((hi[0] - lo[0]).max(1e-9), (hi[1] - lo[1]).max(1e-9));
+    let (w, h) = ((hi[0] - lo[0]).max(MIN_EXTENT), (hi[1] - lo[1]).max(MIN_EXTENT));
     let scale = 800.0 / w.max(h);
     let x = |v: f64| 10.0 + (v - lo[0]) * scale;
     let y = |v: f64| 10.0 + (hi[1] - v) * scale;

@@ -5,6 +5,7 @@
 use serde::{Deserialize, Serialize};
 
 use super::{Agent, Arena, Flow, Leg, NoObserver, Observer, Recording, SimError, Team};
+use crate::kernel::tolerance::SAME_VALUE_REL;
 use crate::protocol::grid::{
     Cell, CellMap, GridContext, GridObservation, Marks, Record, SIDES, sorted_map,
 };
@@ -346,7 +347,10 @@ pub fn arrival_times(
         }
         out.push(t);
         // Scans taken here before the next move.
-        while j < track.scan_times.len() && track.scan_times[j] <= t * (1.0 + 1e-12) + 1e-12 {
+        // The same instant up to rounding (relative, and absolute in seconds near t = 0).
+        while j < track.scan_times.len()
+            && track.scan_times[j] <= t * (1.0 + SAME_VALUE_REL) + SAME_VALUE_REL
+        {
             t += cost.scan_time;
             j += 1;
         }

@@ -207,6 +207,31 @@ pub enum Flow {
 }
 
 /// The loop's state: every robot's track.
+///
+/// # Example
+/// Two robots explore a 3 × 3 region of interest from its corner cell with the ROI paper's
+/// Algorithm 1 ([`RecursiveDfs`](crate::strategy::grid::RecursiveDfs)), at 1 m/s with free
+/// scans and moves, and come home.
+/// ```
+/// use stopscan::protocol::CostModel;
+/// use stopscan::sim::{Flow, NoObserver, Recording, Team};
+/// use stopscan::strategy::grid::RecursiveDfs;
+/// use stopscan::world::grid::{Drift, GridRoi, GridSensor, GridWorld};
+///
+/// let cells = (0..3).flat_map(|row| (0..3).map(move |col| [row, col]));
+/// let roi = GridRoi::new("square", cells, [0, 0], 1.0)?;
+/// let mut world = GridWorld::new(roi, Drift::default(), GridSensor::Ideal, 7);
+/// let cost = CostModel::new(0.0, 0.0, 1.0)?;
+/// let mut robots = [RecursiveDfs::new(0), RecursiveDfs::new(1)];
+/// let mut team = Team::new(vec![[0, 0]; 2], Recording::NONE);
+/// let flow = team.run(&mut world, &cost, &mut robots, &mut NoObserver, 1_000)?;
+/// assert_eq!(flow, Flow::Finished);
+/// assert_eq!(world.visited().len(), 9); // every cell
+/// assert!(team.robots.iter().all(|r| r.done && r.at == [0, 0])); // everyone home
+/// assert_eq!(team.makespan(), 10.0); // seconds, the last robot home
+/// assert_eq!((team.tally().moves, team.tally().distance), (20, 20.0));
+/// # Ok::<(), Box<dyn std::error::Error>>(())
+/// ```
 #[derive(Debug, Clone, Serialize, Deserialize)]
 pub struct Team<P, O> {
     /// The robots, by index.

@@ -181,6 +181,28 @@ impl Visibility {
     ///
     /// # Complexity
     /// O(n log n) time, O(n) space.
+    ///
+    /// # Example
+    /// An L-shaped room: seen from its bottom arm, the reflex corner (2, 2) hides part of the
+    /// left arm behind one window.
+    /// ```
+    /// use stopscan::algorithm::visibility::{BoundaryPiece, Visibility};
+    /// use stopscan::geometry::Domain;
+    ///
+    /// let l = vec![[0.0, 0.0], [4.0, 0.0], [4.0, 2.0], [2.0, 2.0], [2.0, 4.0], [0.0, 4.0]];
+    /// let vis = Visibility::new(Domain::new(l, vec![])?)?;
+    /// let seen = vis.query([3.0, 1.0])?;
+    /// // The bottom arm (8 m²) and the triangle (0, 2), (2, 2), (0, 4) of the left arm (2 m²).
+    /// assert!((seen.area() - 10.0).abs() < 1e-12);
+    /// let windows: Vec<&BoundaryPiece> = seen.windows().collect();
+    /// assert!(matches!(
+    ///     windows[..],
+    ///     [BoundaryPiece::Window { reflex: [2.0, 2.0], far: [0.0, 4.0], .. }]
+    /// ));
+    /// // From the inner corner of the L, the whole room (12 m²) is in view.
+    /// assert!((vis.query([1.0, 1.0])?.area() - 12.0).abs() < 1e-12);
+    /// # Ok::<(), Box<dyn std::error::Error>>(())
+    /// ```
     pub fn new(domain: Domain) -> Result<Self, VisibilityError> {
         let mesh = Mesh::new(&domain)?;
         Ok(Self { domain, mesh })

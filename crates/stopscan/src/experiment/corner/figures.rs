@@ -1,6 +1,6 @@
 //! Figures 4, 6, 7 and 8 of the corner paper; Table 1 and Fig. 7 of the circle paper.
 
-use super::{LineupOptions, fig5, lineup, model_err, paper_setup, ratio_curve};
+use super::{LineupOptions, fig5, lineup, paper_setup, ratio_curve};
 use crate::experiment::{ExperimentError, Reproduction, Row};
 use crate::offline::corner::{expected, optimal::optimal_scans};
 use crate::protocol::corner::{AngleDistribution, CornerSetup, LastStep};
@@ -9,7 +9,7 @@ use crate::strategy::corner::mdp::{CornerMdp, Memory, Reading};
 use crate::strategy::corner::{StopList, circle};
 
 pub(super) fn corner_policy_figure(id: &str) -> Result<Reproduction, ExperimentError> {
-    let setup = paper_setup(2.0);
+    let setup = paper_setup(2.0)?;
     let (dist_no, memories): (usize, &[Memory]) = if id == "corner-fig-4" {
         (4, &[Memory::Last])
     } else {
@@ -30,7 +30,7 @@ pub(super) fn corner_policy_figure(id: &str) -> Result<Reproduction, ExperimentE
                 reading,
                 belief: belief.clone(),
             };
-            let p = m.solve().map_err(model_err)?;
+            let p = m.solve()?;
             let name = if memory == Memory::Last { "MDP2" } else { "MDP1" };
             let label = format!("{name} [{tag} probabilities]");
             let first = p.scan_stops.first().map_or(90.0, |&i| 5.0 * i as f64);
@@ -75,9 +75,9 @@ pub(super) fn corner_policy_figure(id: &str) -> Result<Reproduction, ExperimentE
             ));
         }
     }
-    Ok(Reproduction {
-        id: id.into(),
-        model: vec![
+    Ok(Reproduction::new(
+        id,
+        vec![
             format!("D = 10 m, v = 0.5 m/s, τ = 2 s, δ = 5°, distribution {dist_no} of Fig. 5"),
             "both readings of the transition probabilities: conditional (exact) and printed".into(),
             "MDP2 image rows are the robot's stop i (downwards), columns the last scan's stop j"
@@ -85,10 +85,8 @@ pub(super) fn corner_policy_figure(id: &str) -> Result<Reproduction, ExperimentE
         ],
         rows,
         notes,
-        charts: vec![],
-        images,
-        tables: vec![],
-    })
+    )
+    .with_images(images))
 }
 
 /// The MDP reading of Figs. 7 and 8: Bayes-correct probabilities, so that MDP2's policy is
@@ -117,6 +115,10 @@ fn lineup_times(
 
 const NAMES: [&str; 4] = ["UNIREC", "EXPREC", "POLICY1", "POLICY2"];
 
+/// Two exact expected times closer than this (relative) are the same time: Fig. 8 counts the
+/// beliefs at which POLICY1 takes what POLICY2 took at the belief before.
+const SAME_TIME_REL: f64 = 1e-9;
+
 /// Expected time of the four strategies against a swept parameter.
 fn lineup_chart(
     title: String,
@@ -144,15 +146,14 @@ fn policy(
     reading: Reading,
     belief: &AngleDistribution,
 ) -> Result<crate::strategy::corner::mdp::CornerPolicy, ExperimentError> {
-    CornerMdp {
-        setup: paper_setup(tau),
+    Ok(CornerMdp {
+        setup: paper_setup(tau)?,
         step: 5f64.to_radians(),
         memory,
         reading,
         belief: belief.clone(),
     }
-    .solve()
-    .map_err(model_err)
+    .solve()?)
 }
 
 /// The smallest scan time from which the MDP's policy goes straight to the corner and scans
@@ -172,9 +173,7 @@ fn straight_from(
     while !straight(hi)? {
         hi *= 2.0;
         if hi > 1e6 {
-            return Err(ExperimentError::Model(
-                "the policy never goes straight to the corner".into(),
-            ));
+            return Err(ExperimentError::NeverStraight);
         }
     }
     while hi - lo > 1e-6 {
@@ -191,7 +190,7 @@ pub(super) fn corner_fig_7() -> Result<Reproduction, ExperimentError> {
     let mut rows = Vec::new();
     let mut advantage = Vec::new();
     for &tau in &taus {
-        let t = lineup_times(&paper_setup(tau), &belief, &belief)?;
+        let t = lineup_times(&paper_setup(tau)?, &belief, &belief)?;
         for (k, v) in t.iter().enumerate() {
             series[k].push((tau, *v));
             rows.push(Row::new(format!("τ = {tau} s / {}", NAMES[k]), None, *v));
@@ -208,11 +207,11 @@ pub(super) fn corner_fig_7() -> Result<Reproduction, ExperimentError> {
         Reading::Literal,
         &belief,
     )?);
-    let straight_time = paper_setup(1.0).travel(
+    let straight_time = paper_setup(1.0)?.travel(
         0.0,
         crate::protocol::corner::CORNER,
         crate::protocol::corner::Route::Arc,
-    ) / paper_setup(1.0).cost.speed;
+    ) / paper_setup(1.0)?.cost.speed;
     let first_equal = taus.iter().find(|&&t| t >= from).copied();
     let (first, last) = (advantage[0].1, advantage[advantage.len() - 1].1);
     let trend = if last > first {
@@ -226,14 +225,14 @@ pub(super) fn corner_fig_7() -> Result<Reproduction, ExperimentError> {
         "reconstruction time τ (s)",
         series,
     );
-    Ok(Reproduction {
-        id: "corner-fig-7".into(),
-        model: vec![
+    Ok(Reproduction::new(
+        "corner-fig-7",
+        vec![
             "Fig. 7's caption is cut; we keep distribution 3 (uniform, no prior knowledge) and vary τ from 0.5 s to 20 s".into(),
             "D = 10 m, v = 0.5 m/s, δ = τv/D, MDP step 5°, nominal last step; both MDPs use the Bayes-correct probabilities (POLICY2 is then the optimum over all stop lists on the grid; Tables II–IV declare the printed ones to match the paper's numbers, and this figure prints none)".into(),
         ],
         rows,
-        notes: vec![
+        vec![
             format!(
                 "POLICY2 equals POLICY1 for every τ ≥ {from:.2} s: from there both go straight to the corner and scan once ({straight_time:.2} s + τ){}. The threshold is computed by bisection and holds for every larger τ (in each MDP's own model any other policy scans at least once more on some θ, so its value grows faster with τ than going straight)",
                 first_equal.map_or(String::new(), |t| format!(", which is every swept τ ≥ {t} s"))
@@ -245,17 +244,15 @@ pub(super) fn corner_fig_7() -> Result<Reproduction, ExperimentError> {
             format!("the paper's trend, POLICY2 outperforming POLICY1 more as reconstruction gets costly, {trend}"),
             format!("with the printed MDP probabilities of Tables II–IV, POLICY2 equals POLICY1 for every τ ≥ {from_printed:.2} s"),
         ],
-        charts: vec![("corner-fig-7".into(), chart)],
-        images: vec![],
-        tables: vec![],
-    })
+    )
+    .with_charts(vec![("corner-fig-7".into(), chart)]))
 }
 
 /// A belief N(µ, 5°) on 5° buckets.
 fn normal_belief(mu: i32) -> Result<AngleDistribution, ExperimentError> {
     AngleDistribution::normal(f64::from(mu).to_radians(), 5f64.to_radians())
         .and_then(|d| d.bucketed(5f64.to_radians()))
-        .map_err(model_err)
+        .map_err(ExperimentError::from)
 }
 
 fn scan_degrees(list: &StopList) -> String {
@@ -265,7 +262,7 @@ fn scan_degrees(list: &StopList) -> String {
 
 /// The notes on how the two policies relate in Fig. 8: POLICY1 at µ is POLICY2 at µ − 5°.
 fn fig8_shift_note(reading: Reading) -> Result<(usize, usize, Vec<String>), ExperimentError> {
-    let setup = paper_setup(2.0);
+    let setup = paper_setup(2.0)?;
     let (mut same, mut total, mut except) = (0, 0, Vec::new());
     for mu in (30..=90).step_by(5) {
         let p1 = lineup_lists(&setup, &normal_belief(mu)?, reading)?[2].clone();
@@ -317,15 +314,13 @@ fn bucket_note(setup: &CornerSetup) -> Result<String, ExperimentError> {
 }
 
 pub(super) fn corner_fig_8() -> Result<Reproduction, ExperimentError> {
-    let setup = paper_setup(2.0);
+    let setup = paper_setup(2.0)?;
     let truths = [
         ("left", fig5(1)?, "truth N(60°, 5°)"),
         (
             "right",
-            AngleDistribution::uniform(0.0, std::f64::consts::FRAC_PI_2)
-                .map_err(model_err)?
-                .bucketed(5f64.to_radians())
-                .map_err(model_err)?,
+            AngleDistribution::uniform(0.0, std::f64::consts::FRAC_PI_2)?
+                .bucketed(5f64.to_radians())?,
             "truth uniform on [0°, 90°]",
         ),
     ];
@@ -350,7 +345,7 @@ pub(super) fn corner_fig_8() -> Result<Reproduction, ExperimentError> {
             }
             if mu < 85 {
                 below_85 += 1;
-                if (t[2] - p2_prev).abs() <= 1e-9 * t[2] {
+                if (t[2] - p2_prev).abs() <= SAME_TIME_REL * t[2] {
                     equal += 1;
                 }
             }
@@ -379,16 +374,16 @@ pub(super) fn corner_fig_8() -> Result<Reproduction, ExperimentError> {
     }
     let (same, total, except) = fig8_shift_note(FIGURE_READING)?;
     let (same_printed, _, _) = fig8_shift_note(Reading::Literal)?;
-    Ok(Reproduction {
-        id: "corner-fig-8".into(),
-        model: vec![
+    Ok(Reproduction::new(
+        "corner-fig-8",
+        vec![
             "D = 10 m, v = 0.5 m/s, τ = 2 s, δ = 0.1, MDP step 5°, beliefs N(µ, 5°) for µ = 30°..90° on 5° buckets".into(),
             "exact expected times under the truth instead of 1000-sample averages".into(),
             "both MDPs use the Bayes-correct probabilities (Tables II–IV declare the printed ones to match the paper's numbers; this figure prints none); UNIREC and EXPREC do not depend on the belief".into(),
             "bucket convention: a belief is uniform inside 5° buckets [k·5°, (k+1)·5°]; MDP stop i is at i·5°, and a scan there sees every θ ≤ i·5°".into(),
         ],
         rows,
-        notes: vec![
+        vec![
             format!(
                 "{}POLICY1 for N(µ, 5°) has the same stop list as POLICY2 for N(µ − 5°, 5°) at {same} of {total} beliefs µ = 30°..90°, so the same expected time under any truth. Equal expected times at µ below 85° ({}); the exceptions: {}",
                 if all_equal {
@@ -408,10 +403,8 @@ pub(super) fn corner_fig_8() -> Result<Reproduction, ExperimentError> {
                 "with the printed MDP probabilities of Tables II–IV the two stop lists coincide at {same_printed} of {total} beliefs"
             ),
         ],
-        charts,
-        images: vec![],
-        tables: vec![],
-    })
+    )
+    .with_charts(charts))
 }
 
 const TABLE_1: [(f64, f64); 6] = [
@@ -429,28 +422,25 @@ pub(super) fn circle_table_1() -> Reproduction {
         rows.push(Row::new(format!("{} scans: maximal d", t.scans), Some(d), t.distance));
         rows.push(Row::new(format!("{} scans: c at upper bound", t.scans), Some(c), t.ratio));
     }
-    Reproduction {
-        id: "circle-table-1".into(),
-        model: vec![
+    Reproduction::new(
+        "circle-table-1",
+        vec![
             "units: scan cost 1, speed 1; 'scans' counts intermediate scans (the scan at the corner is extra), as Table 1 does".into(),
             "c(d) by bisection of recursion (1) to adjacent floats; thresholds by bisection in d of the scan count".into(),
         ],
         rows,
-        notes: vec!["the paper rounds to six digits; every row agrees to all printed digits".into()],
-        charts: vec![],
-        images: vec![],
-        tables: vec![],
-    }
+        vec!["the paper rounds to six digits; every row agrees to all printed digits".into()],
+    )
 }
 
 /// `c(d)`, as a reproduction's error.
 fn c_of(d: f64) -> Result<f64, ExperimentError> {
-    circle::ratio(d).map_err(model_err)
+    Ok(circle::ratio(d)?)
 }
 
 pub(super) fn circle_fig_7(seed: u64) -> Result<Reproduction, ExperimentError> {
-    let small = ratio_curve(10.0, 2000).map_err(model_err)?;
-    let large = ratio_curve(100.0, 2000).map_err(model_err)?;
+    let small = ratio_curve(10.0, 2000)?;
+    let large = ratio_curve(100.0, 2000)?;
     // The maximum sits on a cusp (a threshold); refine around the sampled maximum.
     let &(d0, _) = small.iter().max_by(|a, b| a.1.total_cmp(&b.1)).expect("non-empty");
     let (mut lo, mut hi) = (d0 - 0.01, d0 + 0.01);
@@ -459,7 +449,7 @@ pub(super) fn circle_fig_7(seed: u64) -> Result<Reproduction, ExperimentError> {
         if c_of(m1)? < c_of(m2)? { lo = m1 } else { hi = m2 }
     }
     let d_star = 0.5 * (lo + hi);
-    let six = optimal_scans(4.4, 6, seed).map_err(model_err)?;
+    let six = optimal_scans(4.4, 6, seed)?;
     let by_scans: Vec<(usize, f64)> =
         six.ratio_by_scans.iter().copied().enumerate().skip(1).collect();
     let best = (six.scans, six.ratio);
@@ -481,7 +471,7 @@ pub(super) fn circle_fig_7(seed: u64) -> Result<Reproduction, ExperimentError> {
         Row::new(
             "c(1), global optimum with 1 scan",
             Some(1.808_201),
-            optimal_scans(1.0, 1, seed).map_err(model_err)?.ratio,
+            optimal_scans(1.0, 1, seed)?.ratio,
         ),
     ];
     for c in [1.9, 1.99, 1.999] {
@@ -525,14 +515,14 @@ pub(super) fn circle_fig_7(seed: u64) -> Result<Reproduction, ExperimentError> {
             },
         ),
     ];
-    Ok(Reproduction {
-        id: "circle-fig-7".into(),
-        model: vec![
+    Ok(Reproduction::new(
+        "circle-fig-7",
+        vec![
             "units: scan cost 1, speed 1; c(d) on 2000 distances in (0, 10] and in (0, 100]".into(),
             "the global optimum places the scan points anywhere in the plane (restarted Nelder–Mead over 2k coordinates, chained over k = 1…6 with warm starts, exact worst-case ratio)".into(),
         ],
         rows,
-        notes: vec![
+        vec![
             format!(
                 "global optimum at d = 4.4 with at most k intermediate scans: {}; the best, {:.4} with {} scans, is {:.1}% below the paper's Fig. 6 solution (≈ 2.12), so that solution is close to but not the global optimum of its own model; the circle strategy (3 scans) is {:.1}% above the optimum there, not 'within about 2%'",
                 by_scans.iter().map(|&(k, r)| format!("{k} → {r:.6}")).collect::<Vec<_>>().join(", "),
@@ -546,10 +536,8 @@ pub(super) fn circle_fig_7(seed: u64) -> Result<Reproduction, ExperimentError> {
             "every worst-case ratio of the optimiser is exact (breakpoint enumeration) for the printed points (rounded to 1e-9); a property test compares it with an independent brute force over edge angles in (0°, 180°] (tests/corner.rs)".into(),
             "Theorem 1: with c < 2 the recursion collapses before the corner and never gets further than 1/(2 − c) from the start".into(),
         ],
-        charts,
-        images: vec![],
-        tables: vec![],
-    })
+    )
+    .with_charts(charts))
 }
 
 #[cfg(test)]
@@ -565,11 +553,12 @@ mod tests {
         // One extra scan at 55° pays while τ < (φ/π)(π/2 − φ)·20/(1 − φ/π) = 5.376 s.
         assert!((from - 5.376).abs() < 0.01, "{from}");
         for tau in [from + 1e-3, 7.5, 20.0, 100.0] {
-            let lists = lineup_lists(&paper_setup(tau), &belief, FIGURE_READING).unwrap();
+            let lists = lineup_lists(&paper_setup(tau).unwrap(), &belief, FIGURE_READING).unwrap();
             assert_eq!(lists[2], lists[3], "τ = {tau}");
             assert_eq!(lists[3].angles().len(), 1, "τ = {tau}: straight to the corner");
         }
-        let lists = lineup_lists(&paper_setup(from - 0.01), &belief, FIGURE_READING).unwrap();
+        let lists =
+            lineup_lists(&paper_setup(from - 0.01).unwrap(), &belief, FIGURE_READING).unwrap();
         assert_ne!(lists[2], lists[3]);
         let r = corner_fig_7().unwrap();
         assert!(

@@ -16,7 +16,9 @@ use rayon::prelude::*;
 use super::{ExperimentError, MonteCarlo, Reproduction, sample_seed};
 use crate::offline::corner::{expected, worst_case};
 use crate::protocol::CostModel;
-use crate::protocol::corner::{AngleDistribution, CornerSetup, LastStep, Route};
+use crate::protocol::corner::{
+    AngleDistribution, CornerSetup, InvalidCornerSetup, LastStep, Route,
+};
 use crate::render::{LineChart, Series};
 use crate::sim::{NoObserver, corner::run};
 use crate::strategy::corner::mdp::Reading;
@@ -70,14 +72,10 @@ impl Default for LineupOptions {
     }
 }
 
-pub(super) fn model_err(e: impl std::fmt::Display) -> ExperimentError {
-    ExperimentError::Model(e.to_string())
-}
-
 /// UNIREC, EXPREC, POLICY1 and POLICY2 for one setup and belief.
 ///
 /// # Errors
-/// [`ExperimentError::Model`] if a piece of the model is invalid.
+/// [`ExperimentError::Strategy`] if a strategy cannot be built for the setup and belief.
 pub fn lineup(
     setup: &CornerSetup,
     belief: &AngleDistribution,
@@ -93,7 +91,7 @@ pub fn lineup(
     ["unirec", "exprec", "policy1", "policy2"]
         .iter()
         .map(|name| {
-            let list = registry::build(name, setup, belief, &opts).map_err(model_err)?;
+            let list = registry::build(name, setup, belief, &opts)?;
             Ok(Contender { name: name.to_uppercase(), list })
         })
         .collect()
@@ -203,9 +201,11 @@ pub fn monte_carlo_with(
 
 /// The corner paper's experimental setup: the robot on the wall 10 m from the corner,
 /// speed 0.5 m/s, reconstruction time τ (2 s or 10 s), free moves.
-pub fn paper_setup(tau: f64) -> CornerSetup {
+///
+/// # Errors
+/// [`InvalidCornerSetup`] if `tau` is not finite and positive.
+pub fn paper_setup(tau: f64) -> Result<CornerSetup, InvalidCornerSetup> {
     CornerSetup::new(10.0, CostModel { scan_time: tau, move_time: 0.0, speed: 0.5 })
-        .expect("the paper's setup is valid")
 }
 
 /// Distribution `k` (1–4) of the corner paper's Fig. 5, on 5° buckets.
@@ -216,23 +216,21 @@ pub fn paper_setup(tau: f64) -> CornerSetup {
 /// 3 degrees", read as a standard deviation of 3°, the same unit as N(60, 5)).
 ///
 /// # Errors
-/// [`ExperimentError::Model`] for `k` outside 1–4.
+/// [`ExperimentError::NoSuchFig5Distribution`] for `k` outside 1–4.
 pub fn fig5(k: usize) -> Result<AngleDistribution, ExperimentError> {
     let spec = match k {
         1 => "normal:60,5".to_string(),
         2 => {
-            let (m, s, _) = fit_distribution_2();
+            let (m, s, _) = fit_distribution_2()?;
             format!("normal:{m},{s}")
         }
         3 => "uniform:0,180".to_string(),
         4 => "mix:0.5*normal:30,3+0.5*normal:90,3".to_string(),
         _ => {
-            return Err(ExperimentError::Model(format!(
-                "Fig. 5 has distributions 1 to 4, not {k}"
-            )));
+            return Err(ExperimentError::NoSuchFig5Distribution(k));
         }
     };
-    AngleDistribution::parse(&spec).and_then(|d| d.bucketed(5f64.to_radians())).map_err(model_err)
+    Ok(AngleDistribution::parse(&spec).and_then(|d| d.bucketed(5f64.to_radians()))?)
 }
 
 /// Fits Distribution 2, whose description is cut from the text: a Gaussian N(µ, σ) on 5°
@@ -240,18 +238,20 @@ pub fn fig5(k: usize) -> Result<AngleDistribution, ExperimentError> {
 /// error against the paper's policy-independent numbers for it: UNIREC at τ = 2 and τ = 10
 /// and EXPREC at τ = 2 (Table III's EXPREC column matches no reading for any distribution).
 /// Returns `(µ°, σ°, residual)`.
-pub fn fit_distribution_2() -> (f64, f64, f64) {
+///
+/// # Errors
+/// None in practice: the paper's setups and stop lists are valid; their errors are passed on.
+pub fn fit_distribution_2() -> Result<(f64, f64, f64), ExperimentError> {
     let mut best = (0.0, 0.0, f64::INFINITY);
     let lists: Vec<(CornerSetup, StopList, StopList)> = [2.0, 10.0]
         .iter()
         .map(|&tau| {
-            let s = paper_setup(tau);
-            let u = unirec(s.delta(), Route::Arc, LastStep::Nominal).expect("valid δ");
-            let e = exprec(s.delta(), ExprecReading::TableI, Route::Arc, LastStep::Nominal)
-                .expect("valid δ");
-            (s, u, e)
+            let s = paper_setup(tau)?;
+            let u = unirec(s.delta(), Route::Arc, LastStep::Nominal)?;
+            let e = exprec(s.delta(), ExprecReading::TableI, Route::Arc, LastStep::Nominal)?;
+            Ok((s, u, e))
         })
-        .collect();
+        .collect::<Result<_, ExperimentError>>()?;
     for m in (40..=140).step_by(5) {
         for sd in (5..=60).step_by(5) {
             let Ok(t) =
@@ -271,7 +271,7 @@ pub fn fit_distribution_2() -> (f64, f64, f64) {
             }
         }
     }
-    best
+    Ok(best)
 }
 
 /// Runs one reproduction.
@@ -326,9 +326,8 @@ pub fn demo() -> Result<Demo, ExperimentError> {
     let circles = [0.5, 1.0, 2.0, 4.4, 10.0, 40.0]
         .iter()
         .map(|&d| circle::solve(d))
-        .collect::<Result<_, _>>()
-        .map_err(model_err)?;
-    let setup = paper_setup(2.0);
+        .collect::<Result<_, _>>()?;
+    let setup = paper_setup(2.0)?;
     let belief = fig5(4)?;
     let mut four = Vec::new();
     for c in lineup(&setup, &belief, LineupOptions::default())? {
@@ -341,7 +340,7 @@ pub fn demo() -> Result<Demo, ExperimentError> {
         x_label: "distance d (units of v·τ)".into(),
         y_label: "competitive ratio c".into(),
         series: vec![
-            Series::line("c(d)", ratio_curve(20.0, 800).map_err(model_err)?),
+            Series::line("c(d)", ratio_curve(20.0, 800)?),
             Series::line("lower bound 2", vec![(0.0, 2.0), (20.0, 2.0)]).dashed(),
         ],
     };

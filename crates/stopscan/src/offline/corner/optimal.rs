@@ -19,6 +19,7 @@ use rand_chacha::ChaCha8Rng;
 use serde::{Deserialize, Serialize};
 
 use crate::algorithm::nelder_mead::{NelderMeadParams, minimize};
+use crate::kernel::tolerance::SAME_VALUE_REL;
 use crate::protocol::corner::CORNER;
 use crate::strategy::corner::circle;
 
@@ -185,7 +186,7 @@ pub fn optimal_scans_with(
             chain = search(d, j, &circ, &chain, &mut rng);
             let pts = round(&chain);
             let r = plane_ratio(d, &pts);
-            if r < best.1 * (1.0 - 1e-12) {
+            if r < best.1 * (1.0 - SAME_VALUE_REL) {
                 best = (pts, r);
                 idle = 0;
             } else {

@@ -135,7 +135,7 @@ pub fn lower_bounds(
             format!("1 + {} witnesses with pairwise disjoint visibility regions", packing.len());
     }
     if let Some(v) = lp {
-        let by_lp = 1 + (v - 1e-9).ceil().max(0.0) as usize;
+        let by_lp = 1 + (v - LP_TOLERANCE).ceil().max(0.0) as usize;
         if by_lp > views {
             views = by_lp;
             views_rule = format!("1 + ⌈{v:.3}⌉ (fractional packing of witnesses, LP)");
@@ -213,7 +213,7 @@ fn witnesses(
     let [lo, hi] = d.bounds();
     let extent = (hi[0] - lo[0]).hypot(hi[1] - lo[1]);
     let sagitta = range.map_or(0.0, |r| r * RANGE_CHORD_TOLERANCE);
-    let tol = 1e-9 * extent + 16.0 * rounding(magnitude(&[lo, hi])) + 2.0 * sagitta;
+    let tol = NEAR_REL * extent + 16.0 * rounding(magnitude(&[lo, hi])) + 2.0 * sagitta;
     let points = witness_points(vis);
     let mut out = Vec::new();
     let mut complete = true;
@@ -341,6 +341,13 @@ const LP_WITNESSES: usize = 160;
 const LP_ROUNDS: usize = 8;
 /// Constraints added per round.
 const LP_CUTS: usize = 400;
+/// The precision of the packing LP's solution: a weight below it is zero, a depth within it of
+/// 1 is 1, and a value within it above a whole number rounds up to that number.
+const LP_TOLERANCE: f64 = 1e-9;
+/// A point within this times the domain's diagonal of a witness's region (plus the
+/// coordinates' rounding and the chords of a ranged scan) counts as in it: the regions are
+/// constructed in floating point, and the bounds must hold for the exact ones.
+const NEAR_REL: f64 = 1e-9;
 
 /// The best valid fractional packing found (see the module documentation): witnesses and
 /// their weights, already divided by the largest depth; `None` when none was found within the
@@ -385,9 +392,9 @@ fn fractional_packing(
             break;
         }
         let y = solve_packing_lp(ws.len(), &rows, deadline)?;
-        let support: Vec<usize> = (0..ws.len()).filter(|&i| y[i] > 1e-9).collect();
+        let support: Vec<usize> = (0..ws.len()).filter(|&i| y[i] > LP_TOLERANCE).collect();
         let total: f64 = support.iter().map(|&i| y[i]).sum();
-        let ceiling = |v: f64| (v - 1e-9).ceil().max(0.0) as usize;
+        let ceiling = |v: f64| (v - LP_TOLERANCE).ceil().max(0.0) as usize;
         let found = best.as_ref().map_or(0, |b| ceiling(b.0));
         if ceiling(total) <= beat.max(found) {
             break;
@@ -399,7 +406,7 @@ fn fractional_packing(
             let weights = support.iter().map(|&i| (ws[i].at, y[i] / scale)).collect();
             best = Some((value, weights));
         }
-        if depth <= 1.0 + 1e-9 {
+        if depth <= 1.0 + LP_TOLERANCE {
             break;
         }
         let before = rows.len();
@@ -504,13 +511,13 @@ fn arrangement_depths(
         if k % 1024 == 0 && expired(deadline) {
             return None;
         }
-        if bound <= max && bound <= 1.0 + 1e-9 {
+        if bound <= max && bound <= 1.0 + LP_TOLERANCE {
             break;
         }
         let depth: f64 =
             support.iter().filter(|&&i| near(&ws[i].poly, ws[i].bbox, g, tol)).map(|&i| y[i]).sum();
         max = max.max(depth);
-        if depth > 1.0 + 1e-9 {
+        if depth > 1.0 + LP_TOLERANCE {
             deep.push((depth, g));
         }
     }

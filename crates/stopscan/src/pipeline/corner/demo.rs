@@ -77,7 +77,7 @@ pub fn demo(dir: &Path) -> Result<DemoReport, CornerError> {
     let exp::Demo { circles, strategies, chart } = exp::demo()?;
     atomic::ensure_dir(dir)?;
     let files = save_chart(dir, "circle-ratio", &chart)?;
-    let setup = exp::paper_setup(2.0);
+    let setup = exp::paper_setup(2.0)?;
     let report = DemoReport {
         format: "stopscan-corner-demo/1".into(),
         circle: circles

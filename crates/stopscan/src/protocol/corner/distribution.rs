@@ -13,6 +13,15 @@ use rand::RngExt;
 use serde::{Deserialize, Serialize};
 
 use crate::kernel::Num;
+use crate::kernel::tolerance::{ANGLE_SLACK, COUNT_SLACK};
+
+/// A Gaussian with less mass than this inside [0, π] is refused: truncating it to [0, π]
+/// would divide by (almost) nothing.
+const NEGLIGIBLE_MASS: f64 = 1e-12;
+
+/// How far past π (radians) a histogram bucket may end before it is refused; buckets that end
+/// past π are clipped to it.
+const BUCKET_END_SLACK: f64 = 1e-9;
 
 /// A distribution of the edge angle θ on [0, π] (radians).
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
@@ -51,18 +60,11 @@ pub const MAX_BUCKETS: usize = 18_000;
 /// The number of buckets of width `bucket` (radians) over [0, π].
 fn bucket_count(bucket: f64) -> Result<usize, InvalidDistribution> {
     if !(bucket.is_finite() && bucket > 0.0 && bucket <= PI) {
-        return Err(InvalidDistribution::Parameters(format!(
-            "bucket width must be in (0, 180] degrees, got {}°",
-            Num(bucket.to_degrees())
-        )));
+        return Err(InvalidDistribution::BucketWidth(bucket));
     }
-    let n = (PI / bucket - 1e-9).ceil();
+    let n = (PI / bucket - COUNT_SLACK).ceil();
     if n > MAX_BUCKETS as f64 {
-        return Err(InvalidDistribution::Parameters(format!(
-            "a bucket width of {}° gives {} buckets; use at least 0.01° (at most {MAX_BUCKETS} buckets)",
-            Num(bucket.to_degrees()),
-            Num(n)
-        )));
+        return Err(InvalidDistribution::TooManyBuckets { width: bucket, count: n });
     }
     Ok(n as usize)
 }
@@ -90,9 +92,133 @@ pub enum InvalidDistribution {
         /// What is wrong.
         reason: String,
     },
-    /// The parameters do not define a distribution on [0°, 180°].
-    #[error("{0}")]
-    Parameters(String),
+    /// A bucket width outside (0°, 180°].
+    #[error("bucket width must be in (0, 180] degrees, got {}°", Num(.0.to_degrees()))]
+    BucketWidth(
+        /// The width given, radians.
+        f64,
+    ),
+    /// A bucket width so narrow that it gives more than [`MAX_BUCKETS`] buckets.
+    #[error(
+        "a bucket width of {}° gives {} buckets; use at least 0.01° (at most {MAX_BUCKETS} buckets)",
+        Num(.width.to_degrees()),
+        Num(*.count)
+    )]
+    TooManyBuckets {
+        /// The width given, radians.
+        width: f64,
+        /// The number of buckets it gives over [0, π].
+        count: f64,
+    },
+    /// A uniform distribution whose interval is empty or leaves [0°, 180°].
+    #[error(
+        "uniform needs 0 <= lo < hi <= 180 degrees, got [{}, {}]",
+        Num(.lo.to_degrees()),
+        Num(.hi.to_degrees())
+    )]
+    UniformBounds {
+        /// The lower end, radians.
+        lo: f64,
+        /// The upper end, radians.
+        hi: f64,
+    },
+    /// A Gaussian with a mean that is not finite or a standard deviation that is not positive.
+    #[error(
+        "normal needs a finite mean and a positive standard deviation, got {}, {}",
+        Num(.mean.to_degrees()),
+        Num(.sd.to_degrees())
+    )]
+    NormalParameters {
+        /// The mean, radians.
+        mean: f64,
+        /// The standard deviation, radians.
+        sd: f64,
+    },
+    /// A Gaussian with (numerically) no mass inside [0°, 180°], so it cannot be truncated
+    /// to it.
+    #[error(
+        "normal({}, {}) has no mass in [0, 180] degrees",
+        Num(.mean.to_degrees()),
+        Num(.sd.to_degrees())
+    )]
+    NormalNoMass {
+        /// The mean, radians.
+        mean: f64,
+        /// The standard deviation, radians.
+        sd: f64,
+    },
+    /// A mixture without parts, with a negative or non-finite weight, or whose weights sum
+    /// to zero.
+    #[error("mixture weights must be non-negative with a positive sum")]
+    MixtureWeights,
+    /// A histogram without buckets.
+    #[error("a histogram needs at least one bucket")]
+    EmptyHistogram,
+    /// A histogram bucket that is invalid on its own.
+    #[error("histogram bucket {bucket} {}: {problem}", degrees(*.range))]
+    InvalidBucket {
+        /// The bucket, counted from 1 in the order given.
+        bucket: usize,
+        /// Its `[LO, HI]`, radians.
+        range: [f64; 2],
+        /// What is wrong with it.
+        problem: BucketProblem,
+    },
+    /// Two histogram buckets overlap.
+    #[error(
+        "histogram bucket {bucket} {} overlaps bucket {other} {}",
+        degrees(*.range),
+        degrees(*.other_range)
+    )]
+    OverlappingBuckets {
+        /// The later of the two in the order given, counted from 1.
+        bucket: usize,
+        /// Its `[LO, HI]`, radians.
+        range: [f64; 2],
+        /// The earlier one, counted from 1.
+        other: usize,
+        /// Its `[LO, HI]`, radians.
+        other_range: [f64; 2],
+    },
+    /// A histogram whose weights do not have a positive finite sum.
+    #[error("the histogram's weights sum to {}; give at least one positive weight", Num(*.0))]
+    HistogramWeights(
+        /// The sum of the weights.
+        f64,
+    ),
+    /// An observed angle outside [0°, 180°].
+    #[error("observed angle {} is outside [0, 180] degrees", Num(.0.to_degrees()))]
+    ObservedAngle(
+        /// The angle, radians.
+        f64,
+    ),
+}
+
+/// What is wrong with one bucket of a histogram, on its own.
+#[derive(Debug, Clone, Copy, PartialEq, thiserror::Error)]
+#[non_exhaustive]
+pub enum BucketProblem {
+    /// LO or HI is not finite.
+    #[error("LO and HI must be finite")]
+    NotFinite,
+    /// LO is not below HI.
+    #[error("LO must be below HI")]
+    Empty,
+    /// The bucket leaves [0°, 180°].
+    #[error("leaves [0, 180] degrees")]
+    OutsideRange,
+    /// The weight is not finite.
+    #[error("weight {} is not finite", Num(*.0))]
+    WeightNotFinite(
+        /// The weight.
+        f64,
+    ),
+    /// The weight is negative.
+    #[error("weight {} is negative", Num(*.0))]
+    NegativeWeight(
+        /// The weight.
+        f64,
+    ),
 }
 
 impl AngleDistribution {
@@ -101,12 +227,8 @@ impl AngleDistribution {
     /// # Errors
     /// If the interval is empty or leaves [0, π].
     pub fn uniform(lo: f64, hi: f64) -> Result<Self, InvalidDistribution> {
-        if !(lo.is_finite() && hi.is_finite() && 0.0 <= lo && lo < hi && hi <= PI + 1e-12) {
-            return Err(InvalidDistribution::Parameters(format!(
-                "uniform needs 0 <= lo < hi <= 180 degrees, got [{}, {}]",
-                Num(lo.to_degrees()),
-                Num(hi.to_degrees())
-            )));
+        if !(lo.is_finite() && hi.is_finite() && 0.0 <= lo && lo < hi && hi <= PI + ANGLE_SLACK) {
+            return Err(InvalidDistribution::UniformBounds { lo, hi });
         }
         Ok(Self::Uniform { lo, hi: hi.min(PI) })
     }
@@ -117,18 +239,10 @@ impl AngleDistribution {
     /// If the standard deviation is not positive or the mass inside [0, π] is negligible.
     pub fn normal(mean: f64, sd: f64) -> Result<Self, InvalidDistribution> {
         if !(mean.is_finite() && sd.is_finite() && sd > 0.0) {
-            return Err(InvalidDistribution::Parameters(format!(
-                "normal needs a finite mean and a positive standard deviation, got {}, {}",
-                Num(mean.to_degrees()),
-                Num(sd.to_degrees())
-            )));
+            return Err(InvalidDistribution::NormalParameters { mean, sd });
         }
-        if normal_cdf((PI - mean) / sd) - normal_cdf(-mean / sd) < 1e-12 {
-            return Err(InvalidDistribution::Parameters(format!(
-                "normal({}, {}) has no mass in [0, 180] degrees",
-                Num(mean.to_degrees()),
-                Num(sd.to_degrees())
-            )));
+        if normal_cdf((PI - mean) / sd) - normal_cdf(-mean / sd) < NEGLIGIBLE_MASS {
+            return Err(InvalidDistribution::NormalNoMass { mean, sd });
         }
         Ok(Self::Normal { mean, sd })
     }
@@ -143,9 +257,7 @@ impl AngleDistribution {
             || parts.iter().any(|p| !(p.0.is_finite() && p.0 >= 0.0))
             || total <= 0.0
         {
-            return Err(InvalidDistribution::Parameters(
-                "mixture weights must be non-negative with a positive sum".into(),
-            ));
+            return Err(InvalidDistribution::MixtureWeights);
         }
         Ok(Self::Mixture { parts: parts.into_iter().map(|(w, d)| (w / total, d)).collect() })
     }
@@ -156,22 +268,26 @@ impl AngleDistribution {
     /// If buckets are empty, overlap, leave [0, π] or the weights do not have a positive sum.
     pub fn histogram(mut buckets: Vec<(f64, f64, f64)>) -> Result<Self, InvalidDistribution> {
         if buckets.is_empty() {
-            return Err(InvalidDistribution::Parameters(
-                "a histogram needs at least one bucket".into(),
-            ));
+            return Err(InvalidDistribution::EmptyHistogram);
         }
         let total = check_buckets(&buckets).map_err(|f| {
-            let at = |k: usize| format!("bucket {} {}", k + 1, degrees(buckets[k]));
-            InvalidDistribution::Parameters(match f.other {
-                Some(o) => format!("histogram {} overlaps {}", at(f.index), at(o)),
-                None => format!("histogram {}: {}", at(f.index), f.reason),
-            })
+            let range = |k: usize| [buckets[k].0, buckets[k].1];
+            match f {
+                BucketFault::Invalid { index, problem } => InvalidDistribution::InvalidBucket {
+                    bucket: index + 1,
+                    range: range(index),
+                    problem,
+                },
+                BucketFault::Overlap { index, other } => InvalidDistribution::OverlappingBuckets {
+                    bucket: index + 1,
+                    range: range(index),
+                    other: other + 1,
+                    other_range: range(other),
+                },
+            }
         })?;
         if !(total.is_finite() && total > 0.0) {
-            return Err(InvalidDistribution::Parameters(format!(
-                "the histogram's weights sum to {}; give at least one positive weight",
-                Num(total)
-            )));
+            return Err(InvalidDistribution::HistogramWeights(total));
         }
         buckets.sort_by(|a, b| a.0.total_cmp(&b.0));
         Ok(Self::Histogram {
@@ -195,10 +311,7 @@ impl AngleDistribution {
         let mut counts = vec![pseudo_count.max(0.0); n];
         for &a in angles {
             if !(0.0..=PI).contains(&a) {
-                return Err(InvalidDistribution::Parameters(format!(
-                    "observed angle {} is outside [0, 180] degrees",
-                    Num(a.to_degrees())
-                )));
+                return Err(InvalidDistribution::ObservedAngle(a));
             }
             counts[((a / bucket) as usize).min(n - 1)] += 1.0;
         }
@@ -344,47 +457,46 @@ fn data_lines(path: &Path) -> Result<Vec<(usize, String)>, InvalidDistribution> 
         .collect())
 }
 
-/// What is wrong with one bucket of a histogram: its index, the bucket it overlaps (if that is
-/// the fault) and why.
-struct BucketFault {
-    index: usize,
-    other: Option<usize>,
-    reason: String,
+/// What is wrong with a histogram's buckets: one bucket on its own, or a bucket that overlaps
+/// an earlier one (indices from 0, in the order given).
+enum BucketFault {
+    Invalid { index: usize, problem: BucketProblem },
+    Overlap { index: usize, other: usize },
 }
 
 /// `[LO°, HI°]` of a bucket given in radians.
-fn degrees(b: (f64, f64, f64)) -> String {
-    format!("[{}°, {}°]", Num(b.0.to_degrees()), Num(b.1.to_degrees()))
+fn degrees(range: [f64; 2]) -> String {
+    format!("[{}°, {}°]", Num(range[0].to_degrees()), Num(range[1].to_degrees()))
 }
 
 /// Checks each bucket on its own (finite, LO below HI, inside [0, π], weight finite and not
 /// negative), then that no two overlap; returns the total weight. One cause per fault.
 fn check_buckets(buckets: &[(f64, f64, f64)]) -> Result<f64, BucketFault> {
-    let fault = |index, reason: String| BucketFault { index, other: None, reason };
+    let fault = |index, problem| BucketFault::Invalid { index, problem };
     for (k, &(lo, hi, w)) in buckets.iter().enumerate() {
         if !(lo.is_finite() && hi.is_finite()) {
-            return Err(fault(k, "LO and HI must be finite".into()));
+            return Err(fault(k, BucketProblem::NotFinite));
         }
         if lo >= hi {
-            return Err(fault(k, "LO must be below HI".into()));
+            return Err(fault(k, BucketProblem::Empty));
         }
-        if lo < -1e-12 || hi > PI + 1e-9 {
-            return Err(fault(k, "leaves [0, 180] degrees".into()));
+        if lo < -ANGLE_SLACK || hi > PI + BUCKET_END_SLACK {
+            return Err(fault(k, BucketProblem::OutsideRange));
         }
         if !w.is_finite() {
-            return Err(fault(k, format!("weight {} is not finite", Num(w))));
+            return Err(fault(k, BucketProblem::WeightNotFinite(w)));
         }
         if w < 0.0 {
-            return Err(fault(k, format!("weight {} is negative", Num(w))));
+            return Err(fault(k, BucketProblem::NegativeWeight(w)));
         }
     }
     let mut order: Vec<usize> = (0..buckets.len()).collect();
     order.sort_by(|&a, &b| buckets[a].0.total_cmp(&buckets[b].0).then(a.cmp(&b)));
     for pair in order.windows(2) {
         let (a, b) = (pair[0], pair[1]);
-        if buckets[b].0 < buckets[a].1 - 1e-12 {
+        if buckets[b].0 < buckets[a].1 - ANGLE_SLACK {
             let (first, later) = (a.min(b), a.max(b));
-            return Err(BucketFault { index: later, other: Some(first), reason: String::new() });
+            return Err(BucketFault::Overlap { index: later, other: first });
         }
     }
     Ok(buckets.iter().map(|b| b.2).sum())
@@ -427,11 +539,16 @@ fn read_histogram(path: &Path) -> Result<AngleDistribution, InvalidDistribution>
             let b = |k: usize| {
                 format!("[{}, {}]", Num(buckets[k].0.to_degrees()), Num(buckets[k].1.to_degrees()))
             };
-            let reason = match f.other {
-                Some(o) => format!("bucket {} overlaps {} of line {}", b(f.index), b(o), lines[o]),
-                None => format!("bucket {}: {}", b(f.index), f.reason),
+            let (index, reason) = match f {
+                BucketFault::Overlap { index, other } => (
+                    index,
+                    format!("bucket {} overlaps {} of line {}", b(index), b(other), lines[other]),
+                ),
+                BucketFault::Invalid { index, problem } => {
+                    (index, format!("bucket {}: {problem}", b(index)))
+                }
             };
-            return Err(file_error(path, lines[f.index], reason));
+            return Err(file_error(path, lines[index], reason));
         }
         Ok(total) if !(total.is_finite() && total > 0.0) => {
             return Err(file_error(

@@ -11,7 +11,7 @@
 
 mod distribution;
 
-pub use distribution::{AngleDistribution, InvalidDistribution, MAX_BUCKETS};
+pub use distribution::{AngleDistribution, BucketProblem, InvalidDistribution, MAX_BUCKETS};
 
 use serde::{Deserialize, Serialize};
 

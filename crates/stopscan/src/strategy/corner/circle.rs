@@ -34,6 +34,9 @@ fn distance(d: f64) -> Result<f64, CircleError> {
 /// The largest `c` that the bisection starts from when it reaches; `c(d) ≤ 2.17` for all `d`.
 const SAFE_HI: f64 = 3.0;
 
+/// The relative precision to which [`ratio`] and the thresholds of Table 1 are searched.
+const PRECISION: f64 = 1e-12;
+
 /// How the recursion ended for one `(d, c)`.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum Outcome {
@@ -122,7 +125,7 @@ pub fn ratio(d: f64) -> Result<f64, CircleError> {
 /// # Errors
 /// [`CircleError::Distance`] unless `d` is finite and positive.
 pub fn ratio_excess(d: f64) -> Result<f64, CircleError> {
-    Ok(excess_to(distance(d)?, 1e-12))
+    Ok(excess_to(distance(d)?, PRECISION))
 }
 
 /// `c(d) − 1` to a relative tolerance `tol` (0 means: to adjacent floating-point numbers).
@@ -221,6 +224,10 @@ pub struct CircleSolution {
 
 impl CircleSolution {
     /// The same scan points as a corner-paper stop list (chord route).
+    ///
+    /// # Panics
+    /// If the public fields were edited so that `angles` is empty or not strictly increasing
+    /// below the corner: a solution from [`solve`] always satisfies both.
     pub fn stop_list(&self) -> StopList {
         let inner = &self.angles[..self.angles.len() - 1];
         StopList::from_nominal(inner, Route::Chord, LastStep::Capped)
@@ -301,7 +308,7 @@ pub fn thresholds(count: usize) -> Vec<Threshold> {
             lo = hi;
             hi += 0.05 * (1.0 + hi.sqrt());
         }
-        while hi - lo > 1e-12 * hi {
+        while hi - lo > PRECISION * hi {
             let mid = 0.5 * (lo + hi);
             if scans_at(mid) <= k {
                 lo = mid;

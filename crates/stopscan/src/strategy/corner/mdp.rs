@@ -30,6 +30,7 @@ use serde::{Deserialize, Serialize};
 
 use super::StopList;
 use crate::algorithm::mdp::{Mdp, MdpError, MdpSolution, policy_iteration};
+use crate::kernel::tolerance::{ANGLE_SLACK, COUNT_SLACK};
 use crate::protocol::corner::{AngleDistribution, CORNER, CornerSetup, LastStep, Route};
 
 /// Which MDP.
@@ -149,10 +150,10 @@ pub struct CornerPolicy {
 impl CornerMdp {
     /// The discretisation: stops, the belief's CDF at each, and the travel time of each step.
     fn grid(&self) -> Result<Grid, CornerMdpError> {
-        if !(self.step.is_finite() && self.step > 0.0 && self.step <= CORNER + 1e-12) {
+        if !(self.step.is_finite() && self.step > 0.0 && self.step <= CORNER + ANGLE_SLACK) {
             return Err(CornerMdpError::Step(self.step.to_degrees()));
         }
-        let stops = (CORNER / self.step - 1e-9).ceil();
+        let stops = (CORNER / self.step - COUNT_SLACK).ceil();
         let max = match self.memory {
             Memory::Last => MAX_STOPS_MDP2,
             Memory::None => MAX_STOPS_MDP1,

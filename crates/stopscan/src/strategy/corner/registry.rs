@@ -2,8 +2,8 @@
 
 use serde::{Deserialize, Serialize};
 
-use super::mdp::{CornerMdp, Memory, Reading};
-use super::{ExprecReading, StopList, circle, exprec, unirec};
+use super::mdp::{CornerMdp, CornerMdpError, Memory, Reading};
+use super::{ExprecReading, InvalidStopList, StopList, circle, exprec, unirec};
 use crate::protocol::corner::{AngleDistribution, CornerSetup, LastStep, Route};
 use crate::strategy::{Entry, Registry};
 
@@ -20,19 +20,17 @@ pub const REGISTRY: Registry<CornerBuild> = Registry::new(&[
     Entry {
         name: "unirec",
         summary: "scans at δ, 2δ, 3δ, … with δ = τv/D (corner paper, Table I; ratio → π)",
-        build: |s, _, o| unirec(s.delta(), o.route, o.last_step).map_err(|e| invalid(&e)),
+        build: |s, _, o| Ok(unirec(s.delta(), o.route, o.last_step)?),
     },
     Entry {
         name: "exprec",
         summary: "scans at exponentially spaced stops (corner paper, Table I; ratio → 2.2214)",
-        build: |s, _, o| exprec(s.delta(), o.exprec, o.route, o.last_step).map_err(|e| invalid(&e)),
+        build: |s, _, o| Ok(exprec(s.delta(), o.exprec, o.route, o.last_step)?),
     },
     Entry {
         name: "circle",
         summary: "the circle paper's strategy at d = D/(vτ): chords with equalised ratio c(d) → 2",
-        build: |s, _, _| {
-            circle::solve(s.normalised_distance()).map(|c| c.stop_list()).map_err(|e| invalid(&e))
-        },
+        build: |s, _, _| Ok(circle::solve(s.normalised_distance())?.stop_list()),
     },
     Entry {
         name: "policy1",
@@ -56,10 +54,6 @@ pub fn help() -> String {
     REGISTRY.help()
 }
 
-fn invalid(e: &dyn std::fmt::Display) -> BuildError {
-    BuildError::Invalid(e.to_string())
-}
-
 /// The optimal policy of MDP1 or MDP2 for `belief`, as a stop list.
 fn mdp(
     memory: Memory,
@@ -76,7 +70,7 @@ fn mdp(
     }
     .solve()
     .map(|p| p.stop_list)
-    .map_err(|e| invalid(&e))
+    .map_err(BuildError::from)
 }
 
 /// How the registry builds strategies: the readings of the corner paper and the MDP grid.
@@ -113,9 +107,15 @@ pub enum BuildError {
     /// The name is not in the registry; the message lists the names.
     #[error("unknown strategy {0:?}; use one of: {1}")]
     Unknown(String, String),
-    /// The strategy rejected its parameters.
-    #[error("{0}")]
-    Invalid(String),
+    /// UNIREC or EXPREC rejected δ or the last-step reading.
+    #[error(transparent)]
+    StopList(#[from] InvalidStopList),
+    /// An MDP policy could not be built or solved.
+    #[error(transparent)]
+    Mdp(#[from] CornerMdpError),
+    /// The circle strategy rejected the setup's distance.
+    #[error(transparent)]
+    Circle(#[from] circle::CircleError),
 }
 
 /// Builds the stop list of the strategy called `name` for a setup and a belief (the

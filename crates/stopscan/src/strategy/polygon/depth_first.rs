@@ -24,6 +24,35 @@ use crate::kernel::Point;
 use crate::protocol::Action;
 
 /// The depth-first exploration of the paper. Its whole state is serialisable.
+///
+/// # Example
+/// An L-shaped room explored from its bottom arm: the first scan leaves one window, at the
+/// reflex corner; the second, taken on that window, sees the rest. The paper's bound, r + 1
+/// scans for r reflex vertices, is met.
+/// ```
+/// use stopscan::algorithm::region::Region;
+/// use stopscan::geometry::Domain;
+/// use stopscan::protocol::CostModel;
+/// use stopscan::sim::NoObserver;
+/// use stopscan::sim::polygon::run;
+/// use stopscan::strategy::polygon::DepthFirst;
+/// use stopscan::world::polygon::PolygonWorld;
+///
+/// let l = vec![[0.0, 0.0], [4.0, 0.0], [4.0, 2.0], [2.0, 2.0], [2.0, 4.0], [0.0, 4.0]];
+/// let world = PolygonWorld::new(Domain::new(l, vec![])?)?;
+/// let cost = CostModel::default(); // 1 s per scan, 1 m/s
+/// let r = run(&world, [3.0, 1.0], &cost, &mut DepthFirst::new(), &mut NoObserver)?;
+/// assert_eq!(r.tally.scans, 2);
+/// assert_eq!(r.tally.moves, 1);
+/// // The second viewpoint lies on the window (2, 2)–(0, 4), a hair inside the first view.
+/// let [x, y] = r.path[1];
+/// assert!((x - 1.0).abs() < 1e-5 && (y - 3.0).abs() < 1e-5);
+/// assert!((r.time.total() - (2.0 + 8f64.sqrt())).abs() < 1e-5);
+/// // Together the two scans cover the whole room (12 m²).
+/// let seen: Vec<_> = r.scans.iter().map(|s| s.region.polygon.clone()).collect();
+/// assert!((Region::union_all(&seen).area() - 12.0).abs() < 1e-9);
+/// # Ok::<(), Box<dyn std::error::Error>>(())
+/// ```
 #[derive(Debug, Clone, Default, PartialEq, Serialize, Deserialize)]
 pub struct DepthFirst {
     known: Known,

@@ -330,7 +330,10 @@ impl GridRoi {
         let inner = self
             .cells
             .iter()
-            .filter(|&&c| cell_overlap(shape, c, self.cell_size) >= full * (1.0 - 1e-9))
+            .filter(|&&c| {
+                cell_overlap(shape, c, self.cell_size)
+                    >= full * (1.0 - crate::kernel::tolerance::AREA_REL)
+            })
             .count();
         Some((self.cells.len(), inner))
     }

@@ -6,7 +6,7 @@ use super::Table;
 use super::readings::{Cell, cells, readings, time_sd};
 use super::{PAPER_SAMPLES, ROUNDING};
 use crate::experiment::ExperimentError;
-use crate::experiment::corner::{fig5, model_err, paper_setup};
+use crate::experiment::corner::{fig5, paper_setup};
 use crate::offline::corner::expected;
 use crate::protocol::corner::{AngleDistribution, CornerSetup, LastStep};
 use crate::strategy::corner::mdp::{CornerMdp, Memory, Reading};
@@ -22,7 +22,7 @@ fn fine_optimum(setup: &CornerSetup, dist: &AngleDistribution) -> Result<f64, Ex
         reading: Reading::Conditional,
         belief: dist.clone(),
     };
-    Ok(expected(&fine.solve().map_err(model_err)?.stop_list, setup, dist).time)
+    Ok(expected(&fine.solve()?.stop_list, setup, dist).time)
 }
 
 /// A published value below the exact optimum of its own setup, which no strategy reaches in
@@ -43,7 +43,7 @@ pub(super) fn below_optimum(table: Table, cells: &[Cell]) -> Result<Vec<Below>, 
         // Belief and truth differ; the optimum for the truth is not what the table compares.
         return Ok(Vec::new());
     }
-    let setup = paper_setup(table.tau());
+    let setup = paper_setup(table.tau())?;
     let mut out = Vec::new();
     for (g, (_, _, truth, _)) in table.groups()?.into_iter().enumerate() {
         let optimum = fine_optimum(&setup, &truth)?;
@@ -79,7 +79,7 @@ pub(super) fn describe_below(b: &[Below]) -> String {
 /// What Table III (τ = 10 s) shows about the paper's simulator, for the notes of Tables II
 /// and III.
 fn tau10_evidence() -> Result<String, ExperimentError> {
-    let setup = paper_setup(10.0);
+    let setup = paper_setup(10.0)?;
     let cells = cells(Table::Three)?;
     let (mut min_rel, mut min_z) = (f64::INFINITY, f64::INFINITY);
     for (d, c) in (1..=4).zip(cells.iter().filter(|c| c.strategy == 1)) {
@@ -87,8 +87,7 @@ fn tau10_evidence() -> Result<String, ExperimentError> {
         // Every EXPREC we can construct: both stop rules, both last-step charges.
         for r in [ExprecReading::TableI, ExprecReading::Appendix] {
             for last in [LastStep::Nominal, LastStep::Capped] {
-                let l = exprec(setup.delta(), r, crate::protocol::corner::Route::Arc, last)
-                    .map_err(model_err)?;
+                let l = exprec(setup.delta(), r, crate::protocol::corner::Route::Arc, last)?;
                 let v = expected(&l, &setup, &dist).time;
                 let se = time_sd(&l, &setup, &dist) / PAPER_SAMPLES.sqrt();
                 min_rel = min_rel.min((v - c.paper) / c.paper);

@@ -13,7 +13,7 @@
 mod evidence;
 mod readings;
 
-use super::{fig5, fit_distribution_2, model_err, monte_carlo, paper_setup};
+use super::{fig5, fit_distribution_2, monte_carlo, paper_setup};
 use crate::experiment::{ExperimentError, MonteCarlo, Reproduction, Row, sample_seed};
 use crate::protocol::corner::AngleDistribution;
 use evidence::{below_optimum, describe_below, policy2_note};
@@ -74,7 +74,7 @@ impl Table {
     /// `(row prefix, belief, truth, published values)` per group of four rows.
     fn groups(self) -> Result<Vec<Group>, ExperimentError> {
         if self == Self::Four {
-            let truth = AngleDistribution::uniform(0.0, std::f64::consts::PI).map_err(model_err)?;
+            let truth = AngleDistribution::uniform(0.0, std::f64::consts::PI)?;
             return Ok(vec![(String::new(), fig5(1)?, truth, TABLE_4)]);
         }
         let paper = if self == Self::Two { TABLE_2 } else { TABLE_3 };
@@ -95,7 +95,7 @@ fn rows(
     samples: usize,
     seed: u64,
 ) -> Result<Vec<Row>, ExperimentError> {
-    let setup = paper_setup(table.tau());
+    let setup = paper_setup(table.tau())?;
     let names = readings().map(|r| r.name);
     let mut rows = Vec::new();
     for c in cells {
@@ -117,14 +117,14 @@ fn rows(
     Ok(rows)
 }
 
-fn common_model(tau: f64) -> Vec<String> {
-    let s = paper_setup(tau);
-    vec![
+fn common_model(tau: f64) -> Result<Vec<String>, ExperimentError> {
+    let s = paper_setup(tau)?;
+    Ok(vec![
         format!("D = 10 m, v = 0.5 m/s, τ = {tau} s, no per-move time; δ = τv/D = {} for UNIREC and EXPREC", s.delta()),
         "θ ranges over [0°, 180°]; θ ≥ 90° is seen only from the corner; travel is along the circle (D·Δφ), as the paper's formula charges it".into(),
         "MDP stops every 5° (the bucket size of Fig. 5); distributions are the Fig. 5 histograms (5° buckets, uniform inside)".into(),
         "'ours' is the exact expected time (integrated over θ); 'monte_carlo' is the mean of --samples simulated runs (the paper's 1000 by default), seeded".into(),
-    ]
+    ])
 }
 
 pub(super) fn corner_table(
@@ -134,7 +134,7 @@ pub(super) fn corner_table(
 ) -> Result<Reproduction, ExperimentError> {
     let cells = cells(table)?;
     let rows = rows(table, &cells, samples, seed)?;
-    let mut model = common_model(table.tau());
+    let mut model = common_model(table.tau())?;
     model.extend(declaration()?);
     let mut notes = agreement_notes(&cells);
     if table == Table::Four {
@@ -153,7 +153,7 @@ pub(super) fn corner_table(
             ));
         }
     } else {
-        let (m, s, r) = fit_distribution_2();
+        let (m, s, r) = fit_distribution_2()?;
         model.push(format!(
             "Distribution 2 is cut from the text; fitted as N({m}°, {s}°) to its UNIREC (τ = 2, 10) and EXPREC (τ = 2) values (squared relative residual {r:.5}); the fit is a flat ridge (wide Gaussians leaning to large θ), so dist 2 rows carry that uncertainty"
         ));
@@ -164,15 +164,7 @@ pub(super) fn corner_table(
         }
         notes.push(policy2_note(&cells)?);
     }
-    Ok(Reproduction {
-        id: table.id().into(),
-        model,
-        rows,
-        notes,
-        charts: vec![],
-        images: vec![],
-        tables: vec![],
-    })
+    Ok(Reproduction::new(table.id(), model, rows, notes))
 }
 
 #[cfg(test)]
@@ -225,7 +217,7 @@ mod tests {
 
     #[test]
     fn exact_standard_deviation_matches_sampling() {
-        let setup = paper_setup(2.0);
+        let setup = paper_setup(2.0).unwrap();
         let truth = fig5(4).unwrap();
         let list = lineup(&setup, &truth, declared()).unwrap()[0].list.clone();
         let sd = time_sd(&list, &setup, &truth);

@@ -105,7 +105,7 @@ pub(super) fn time_sd(list: &StopList, setup: &CornerSetup, truth: &AngleDistrib
 
 /// Every cell of a table under every reading (exact values only).
 pub(super) fn cells(table: Table) -> Result<Vec<Cell>, ExperimentError> {
-    let setup = paper_setup(table.tau());
+    let setup = paper_setup(table.tau())?;
     let readings = readings();
     let mut out = Vec::new();
     for (g, (prefix, belief, truth, paper)) in table.groups()?.into_iter().enumerate() {
