@@ -60,7 +60,7 @@ pub fn reproduce_with_data(
 use serde::{Deserialize, Serialize};
 
 use crate::render::LineChart;
-use crate::strategy::corner::mdp::Cell;
+use crate::strategy::corner::mdp::StateAction;
 
 /// One compared number: the paper's value beside ours.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
@@ -163,7 +163,7 @@ pub struct Reproduction {
     pub charts: Vec<(String, LineChart)>,
     /// Policy images to write with `--out`.
     #[serde(skip)]
-    pub images: Vec<(String, String, Vec<Vec<Cell>>)>,
+    pub images: Vec<(String, String, Vec<Vec<StateAction>>)>,
     /// Tables to write with `--out`: (file name, CSV text).
     #[serde(skip)]
     pub tables: Vec<(String, String)>,
@@ -200,7 +200,7 @@ impl Reproduction {
 
     /// Sets the policy images to write with `--out`: (file stem, title, cells).
     #[must_use]
-    pub fn with_images(mut self, images: Vec<(String, String, Vec<Vec<Cell>>)>) -> Self {
+    pub fn with_images(mut self, images: Vec<(String, String, Vec<Vec<StateAction>>)>) -> Self {
         self.images = images;
         self
     }
@@ -222,7 +222,7 @@ pub enum ExperimentError {
     UnknownId(String, String),
     /// A simulated corner strategy misbehaved.
     #[error(transparent)]
-    Sim(#[from] crate::sim::corner::SimError),
+    Sim(#[from] crate::sim::corner::CornerRunError),
     /// A corner setup (distance, cost model) was rejected.
     #[error(transparent)]
     Setup(#[from] crate::protocol::corner::InvalidCornerSetup),

@@ -7,7 +7,7 @@ use plotters::prelude::*;
 
 use super::RenderError;
 use super::glyphs::PaddedText;
-use crate::strategy::corner::mdp::Cell;
+use crate::strategy::corner::mdp::StateAction;
 
 /// Writes a policy image like the corner paper's Fig. 4 / Fig. 6 as `stem.svg` and `stem.png`.
 /// For MDP2, row `i` (downwards) is the robot's stop and column `j` the last scan's stop; for
@@ -17,7 +17,7 @@ use crate::strategy::corner::mdp::Cell;
 /// # Errors
 /// [`RenderError`] if the image is empty or cannot be drawn.
 pub fn write_policy_image(
-    rows: &[Vec<Cell>],
+    rows: &[Vec<StateAction>],
     title: &str,
     stem: &Path,
 ) -> Result<Vec<PathBuf>, RenderError> {
@@ -41,7 +41,7 @@ pub fn write_policy_image(
 
 fn draw_policy<DB: DrawingBackend>(
     root: &DrawingArea<DB, Shift>,
-    rows: &[Vec<Cell>],
+    rows: &[Vec<StateAction>],
     title: &str,
 ) -> Result<(), String> {
     root.fill(&WHITE).map_err(|e| e.to_string())?;
@@ -69,9 +69,9 @@ fn draw_policy<DB: DrawingBackend>(
     let cells = rows.iter().enumerate().flat_map(|(i, row)| {
         row.iter().enumerate().map(move |(j, c)| {
             let color = match c {
-                Cell::Inaccessible => RGBColor(70, 110, 200),
-                Cell::Move => RGBColor(200, 50, 50),
-                Cell::Reconstruct => RGBColor(60, 170, 70),
+                StateAction::Inaccessible => RGBColor(70, 110, 200),
+                StateAction::Move => RGBColor(200, 50, 50),
+                StateAction::Reconstruct => RGBColor(60, 170, 70),
             };
             Rectangle::new([(j as f64, i as f64), (j as f64 + 1.0, i as f64 + 1.0)], color.filled())
         })

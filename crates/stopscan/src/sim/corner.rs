@@ -5,13 +5,13 @@ use serde::{Deserialize, Serialize};
 use super::Observer;
 use crate::protocol::corner::{CornerObservation, Route, Stop};
 use crate::protocol::{Action, Tally, TimeBreakdown};
-use crate::strategy::corner::{CornerStrategy, Feedback};
+use crate::strategy::corner::{CornerFeedback, CornerStrategy};
 use crate::world::corner::CornerWorld;
 
 /// Why a run was cut short.
 #[derive(Debug, Clone, PartialEq, Eq, thiserror::Error)]
 #[non_exhaustive]
-pub enum SimError {
+pub enum CornerRunError {
     /// The strategy asked to move backwards along the circle.
     #[error("strategy {0} asked to move backwards along the circle")]
     Backwards(String),
@@ -39,30 +39,30 @@ pub struct CornerRun {
 /// Runs `strategy` in `world` until it is done; observers hear every move and scan.
 ///
 /// # Errors
-/// [`SimError`] if the strategy misbehaves (moves backwards, never finishes, gives up).
+/// [`CornerRunError`] if the strategy misbehaves (moves backwards, never finishes, gives up).
 pub fn run(
     world: &CornerWorld,
     strategy: &mut dyn CornerStrategy,
     observer: &mut dyn Observer<Stop, CornerObservation>,
-) -> Result<CornerRun, SimError> {
+) -> Result<CornerRun, CornerRunError> {
     const LIMIT: usize = 1_000_000;
     let mut tally = Tally::default();
     let mut at = 0.0;
     let mut scans = Vec::new();
-    let mut feedback = Feedback::Start;
+    let mut feedback = CornerFeedback::Start;
     let mut seen = false;
     let mut interrupted = false;
     for _ in 0..LIMIT {
         match strategy.act(feedback) {
             Action::MoveTo { to } => {
                 if to.angle < at {
-                    return Err(SimError::Backwards(strategy.name().into()));
+                    return Err(CornerRunError::Backwards(strategy.name().into()));
                 }
                 let (reached, metres) = world.drive(at, &to);
                 tally.moves += 1;
                 tally.distance += metres;
                 at = reached;
-                feedback = Feedback::Arrived;
+                feedback = CornerFeedback::Arrived;
                 if observer.on_move(0, &Stop { angle: at, route: to.route }, metres).is_break() {
                     interrupted = true;
                     break;
@@ -73,7 +73,7 @@ pub fn run(
                 tally.scans += 1;
                 scans.push(at);
                 seen = matches!(obs, CornerObservation::Seen { .. });
-                feedback = Feedback::Scanned(obs);
+                feedback = CornerFeedback::Scanned(obs);
                 if observer
                     .on_scan(0, &Stop { angle: at, route: Route::default() }, &obs)
                     .is_break()
@@ -84,7 +84,7 @@ pub fn run(
             }
             Action::Done => {
                 if !seen {
-                    return Err(SimError::GaveUp(strategy.name().into()));
+                    return Err(CornerRunError::GaveUp(strategy.name().into()));
                 }
                 observer.on_finish(&tally);
                 return Ok(CornerRun {
@@ -100,7 +100,7 @@ pub fn run(
         observer.on_finish(&tally);
         return Ok(CornerRun { tally, time: world.setup.cost.price(&tally), scans, interrupted });
     }
-    Err(SimError::TooLong(strategy.name().into(), LIMIT))
+    Err(CornerRunError::TooLong(strategy.name().into(), LIMIT))
 }
 
 #[cfg(test)]

@@ -106,7 +106,7 @@ pub fn save_policy_image(
     dir: &Path,
     name: &str,
     title: &str,
-    image: &[Vec<crate::strategy::corner::mdp::Cell>],
+    image: &[Vec<crate::strategy::corner::mdp::StateAction>],
 ) -> Result<Vec<String>, WriteError> {
     Ok(atomic::write_stem(&dir.join(name), |stem| write_policy_image(image, title, stem))?
         .iter()

@@ -121,7 +121,7 @@ struct Grid {
 /// What each state does, for policy images (the corner paper's Fig. 4 and Fig. 6).
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
 #[serde(rename_all = "snake_case")]
-pub enum Cell {
+pub enum StateAction {
     /// `j > i`: no such state.
     Inaccessible,
     /// Move on.
@@ -144,7 +144,7 @@ pub struct CornerPolicy {
     /// The stop indices where it scans (the last is `n`).
     pub scan_stops: Vec<usize>,
     /// Policy image rows: MDP2 row `i`, column `j`; MDP1 row 0 is `s_i`, row 1 is `s'_i`.
-    pub image: Vec<Vec<Cell>>,
+    pub image: Vec<Vec<StateAction>>,
 }
 
 impl CornerMdp {
@@ -248,19 +248,19 @@ impl CornerMdp {
             .map(|i| {
                 (0..=n)
                     .map(|j| match j.cmp(&i) {
-                        std::cmp::Ordering::Greater => Cell::Inaccessible,
+                        std::cmp::Ordering::Greater => StateAction::Inaccessible,
                         std::cmp::Ordering::Equal => {
                             if i == n {
-                                Cell::Reconstruct
+                                StateAction::Reconstruct
                             } else {
-                                Cell::Move
+                                StateAction::Move
                             }
                         }
                         std::cmp::Ordering::Less => {
                             if i == n || scan[tri(i, j)] {
-                                Cell::Reconstruct
+                                StateAction::Reconstruct
                             } else {
-                                Cell::Move
+                                StateAction::Move
                             }
                         }
                     })
@@ -287,8 +287,12 @@ impl CornerMdp {
         let model_value = mt + step[0] + w[1];
         let scan_stops: Vec<usize> = (1..=n).filter(|&i| scan[i]).collect();
         let image = vec![
-            (0..=n).map(|i| if scan[i] { Cell::Reconstruct } else { Cell::Move }).collect(),
-            (0..=n).map(|i| if i == n { Cell::Inaccessible } else { Cell::Move }).collect(),
+            (0..=n)
+                .map(|i| if scan[i] { StateAction::Reconstruct } else { StateAction::Move })
+                .collect(),
+            (0..=n)
+                .map(|i| if i == n { StateAction::Inaccessible } else { StateAction::Move })
+                .collect(),
         ];
         Self::finish(n, 2 * n, model_value, &g.phi, scan_stops, image)
     }
@@ -306,7 +310,7 @@ impl CornerMdp {
         model_value: f64,
         phi: &[f64],
         scan_stops: Vec<usize>,
-        image: Vec<Vec<Cell>>,
+        image: Vec<Vec<StateAction>>,
     ) -> CornerPolicy {
         let angles: Vec<f64> = scan_stops.iter().map(|&i| phi[i]).collect();
         let stop_list = StopList::from_nominal(&angles, Route::Arc, LastStep::Capped)

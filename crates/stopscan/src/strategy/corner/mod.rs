@@ -27,7 +27,7 @@ use crate::protocol::corner::{CornerObservation, Stop};
 /// What the driver tells a corner strategy before asking for its next action.
 #[derive(Debug, Clone, Copy, PartialEq, serde::Serialize, serde::Deserialize)]
 #[serde(tag = "event", rename_all = "snake_case")]
-pub enum Feedback {
+pub enum CornerFeedback {
     /// The run begins; the robot stands at the start and has scanned there.
     Start,
     /// The robot reached the stop it asked for.
@@ -36,10 +36,10 @@ pub enum Feedback {
     Scanned(CornerObservation),
 }
 
-/// An online corner strategy: a state machine fed only with [`Feedback`].
+/// An online corner strategy: a state machine fed only with [`CornerFeedback`].
 pub trait CornerStrategy {
     /// The registry name (`unirec`, `exprec`, `circle`, `policy1`, `policy2`, `stops`).
     fn name(&self) -> &str;
     /// The next action.
-    fn act(&mut self, feedback: Feedback) -> Action<Stop>;
+    fn act(&mut self, feedback: CornerFeedback) -> Action<Stop>;
 }

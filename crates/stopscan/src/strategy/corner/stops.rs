@@ -2,7 +2,7 @@
 
 use serde::{Deserialize, Serialize};
 
-use super::{CornerStrategy, Feedback};
+use super::{CornerFeedback, CornerStrategy};
 use crate::protocol::Action;
 use crate::protocol::corner::{CORNER, CornerObservation, CornerSetup, LastStep, Route, Stop};
 
@@ -245,14 +245,14 @@ impl CornerStrategy for StopListStrategy {
         &self.name
     }
 
-    fn act(&mut self, feedback: Feedback) -> Action<Stop> {
+    fn act(&mut self, feedback: CornerFeedback) -> Action<Stop> {
         match feedback {
-            Feedback::Arrived => Action::Scan,
-            Feedback::Scanned(CornerObservation::Seen { .. }) => {
+            CornerFeedback::Arrived => Action::Scan,
+            CornerFeedback::Scanned(CornerObservation::Seen { .. }) => {
                 self.finished = true;
                 Action::Done
             }
-            Feedback::Start | Feedback::Scanned(CornerObservation::Hidden) => {
+            CornerFeedback::Start | CornerFeedback::Scanned(CornerObservation::Hidden) => {
                 if self.finished || self.next >= self.list.len() {
                     self.finished = true;
                     return Action::Done;
@@ -315,15 +315,15 @@ mod tests {
     fn strategy_state_survives_a_serde_round_trip_mid_run() {
         let list = unirec(0.3, Route::Arc, LastStep::Capped).unwrap();
         let mut a = list.into_strategy("unirec");
-        let _ = a.act(Feedback::Start);
-        let _ = a.act(Feedback::Arrived);
+        let _ = a.act(CornerFeedback::Start);
+        let _ = a.act(CornerFeedback::Arrived);
         let saved = serde_json::to_string(&a).unwrap();
         let mut b: StopListStrategy = serde_json::from_str(&saved).unwrap();
         for _ in 0..12 {
-            let fb = Feedback::Scanned(CornerObservation::Hidden);
+            let fb = CornerFeedback::Scanned(CornerObservation::Hidden);
             let (x, y) = (a.act(fb), b.act(fb));
             assert_eq!(x, y);
-            assert_eq!(a.act(Feedback::Arrived), b.act(Feedback::Arrived));
+            assert_eq!(a.act(CornerFeedback::Arrived), b.act(CornerFeedback::Arrived));
         }
         assert_eq!(a, b);
     }
