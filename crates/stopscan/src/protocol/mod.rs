@@ -139,8 +139,13 @@ pub enum Action<P> {
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 #[serde(tag = "event", rename_all = "snake_case")]
 pub enum Feedback<P, O> {
-    /// The run begins at this place.
-    Start(P),
+    /// The run begins at this place. A named field, not a newtype: an internally tagged
+    /// newtype variant cannot hold an array place (`[f64; 2]`, a grid cell), so a state saved
+    /// before the first step would not serialise.
+    Start {
+        /// Where the robot stands.
+        at: P,
+    },
     /// The robot reached the place it asked for.
     Arrived,
     /// The scan it asked for.
@@ -160,6 +165,28 @@ mod tests {
         assert_eq!(p.move_time_total, 1.0);
         assert_eq!(p.travel_time_total, 20.0);
         assert_eq!(m.time(&t), 27.0);
+    }
+
+    /// Every event serialises and reads back, for array places too (a polygon point, a grid
+    /// cell): a saved state may hold any of them, the start included.
+    #[test]
+    fn every_event_round_trips_with_array_places() {
+        #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+        struct Seen {
+            area: f64,
+        }
+        let events: [Feedback<[f64; 2], Seen>; 3] = [
+            Feedback::Start { at: [1.5, -2.0] },
+            Feedback::Arrived,
+            Feedback::Scanned(Seen { area: 2.5 }),
+        ];
+        for e in events {
+            let text = serde_json::to_string(&e).unwrap();
+            let back: Feedback<[f64; 2], Seen> = serde_json::from_str(&text).unwrap();
+            assert_eq!(back, e, "{text}");
+        }
+        let cell: Feedback<[i64; 2], ()> = Feedback::Start { at: [3, 4] };
+        assert_eq!(serde_json::to_string(&cell).unwrap(), r#"{"event":"start","at":[3,4]}"#);
     }
 
     #[test]

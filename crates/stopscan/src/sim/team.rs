@@ -302,7 +302,7 @@ impl<P: Clone + PartialEq + Debug + Spot, O: Clone> Team<P, O> {
             .map(|s| Track {
                 clock: 0.0,
                 at: s.clone(),
-                feedback: Feedback::Start(s.clone()),
+                feedback: Feedback::Start { at: s.clone() },
                 done: false,
                 tally: Tally::default(),
                 path: vec![s],

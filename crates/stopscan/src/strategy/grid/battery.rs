@@ -168,7 +168,7 @@ impl<S: GridStrategy> GridStrategy for Battery<S> {
 
     fn act(&mut self, feedback: &GridFeedback, context: &GridContext) -> Action<Cell> {
         self.inner_acted = false;
-        if let GridFeedback::Start(c) = feedback {
+        if let GridFeedback::Start { at: c } = feedback {
             self.home.get_or_insert(*c);
             self.at.get_or_insert(*c);
         }

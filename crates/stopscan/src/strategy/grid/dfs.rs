@@ -200,7 +200,7 @@ impl GridStrategy for RecursiveDfs {
     fn act(&mut self, feedback: &GridFeedback, context: &GridContext) -> Action<Cell> {
         self.noted = false;
         match feedback {
-            GridFeedback::Start(cell) => {
+            GridFeedback::Start { at: cell } => {
                 self.at = Some(*cell);
                 self.motion = Motion::Start;
                 let a = self.arrive(context);

@@ -163,12 +163,12 @@ impl<S: GridStrategy + Clone> GridStrategy for LawnMower<S> {
     }
 
     fn act(&mut self, feedback: &GridFeedback, context: &GridContext) -> Action<Cell> {
-        if let GridFeedback::Start(c) = feedback {
+        if let GridFeedback::Start { at: c } = feedback {
             self.launch.get_or_insert(*c);
         }
         match self.phase {
             Phase::Search(i) => match feedback {
-                GridFeedback::Start(_) | GridFeedback::Arrived => Action::Scan,
+                GridFeedback::Start { .. } | GridFeedback::Arrived => Action::Scan,
                 GridFeedback::Scanned(obs) => {
                     let vote = obs.vote();
                     self.resume_at = i;
@@ -176,7 +176,7 @@ impl<S: GridStrategy + Clone> GridStrategy for LawnMower<S> {
                         self.phase = Phase::Inner;
                         self.entry = Some(obs.cell);
                         self.confirmed = true;
-                        return self.inner.act(&GridFeedback::Start(obs.cell), context);
+                        return self.inner.act(&GridFeedback::Start { at: obs.cell }, context);
                     }
                     if let Some(side) = vote.sides.iter().position(|&s| s) {
                         let to = neighbour(obs.cell, side);
@@ -191,7 +191,7 @@ impl<S: GridStrategy + Clone> GridStrategy for LawnMower<S> {
             Phase::Entering => {
                 self.phase = Phase::Inner;
                 let entry = self.entry.unwrap_or_default();
-                self.inner.act(&GridFeedback::Start(entry), context)
+                self.inner.act(&GridFeedback::Start { at: entry }, context)
             }
             Phase::Inner => {
                 if let GridFeedback::Scanned(obs) = feedback {

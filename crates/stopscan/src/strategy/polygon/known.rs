@@ -348,7 +348,7 @@ pub(super) fn act<S>(
     plan: fn(&mut S, usize) -> Action<Point>,
 ) -> Action<Point> {
     match feedback {
-        PolygonFeedback::Start(_) => Action::Scan,
+        PolygonFeedback::Start { .. } => Action::Scan,
         PolygonFeedback::Arrived => known(s).next_move(),
         PolygonFeedback::Scanned(obs) => {
             let v = known(s).add(obs);
