@@ -76,6 +76,15 @@ pub(super) fn distance_error(e: CircleError) -> CornerError {
         CircleError::Distance(d) => {
             InvalidParameter::new("distance", "be a finite positive number", &Num(d)).into()
         }
+        CircleError::TooFar(d) => InvalidParameter::new(
+            "distance",
+            format!(
+                "be at most {} (units of v·τ; beyond it c(d) = 2 below double precision)",
+                Num(crate::strategy::corner::circle::MAX_DISTANCE)
+            ),
+            &Num(d),
+        )
+        .into(),
     }
 }
 

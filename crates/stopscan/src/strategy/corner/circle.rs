@@ -24,11 +24,32 @@ pub enum CircleError {
     /// The normalised distance to the corner is not a finite positive number.
     #[error("the distance must be a finite positive number, got {}", Num(*.0))]
     Distance(f64),
+    /// The normalised distance is beyond [`MAX_DISTANCE`], where `c(d) − 2 < 1/d` is below
+    /// what double precision resolves and the recursion's answer would be meaningless.
+    #[error(
+        "the distance {} is beyond {} (in units of v·τ): c(d) differs from 2 by less than 1/d, \
+         below double precision; c(d) = 2 to every printed digit there",
+        Num(*.0),
+        Num(MAX_DISTANCE)
+    )]
+    TooFar(f64),
 }
 
-/// `d` if it is a distance the recursion accepts: finite and positive.
+/// The largest normalised distance `d = D/(vτ)` the recursion is computed for. Beyond about
+/// 1e18 the bracket `(2 − 1/d, …)` collapses in double precision and no `c` reaches; 1e15
+/// keeps a margin of three orders of magnitude.
+pub const MAX_DISTANCE: f64 = 1e15;
+
+/// `d` if it is a distance the recursion accepts: finite, positive and at most
+/// [`MAX_DISTANCE`].
 fn distance(d: f64) -> Result<f64, CircleError> {
-    if d.is_finite() && d > 0.0 { Ok(d) } else { Err(CircleError::Distance(d)) }
+    if !(d.is_finite() && d > 0.0) {
+        Err(CircleError::Distance(d))
+    } else if d > MAX_DISTANCE {
+        Err(CircleError::TooFar(d))
+    } else {
+        Ok(d)
+    }
 }
 
 /// The largest `c` that the bisection starts from when it reaches; `c(d) ≤ 2.17` for all `d`.
@@ -377,6 +398,20 @@ mod tests {
             solve(-1.0).unwrap_err().to_string(),
             "the distance must be a finite positive number, got -1"
         );
+    }
+
+    /// Up to the limit the ratio is the strategy's (about 2, above Theorem 1's 2 − 1/d, with
+    /// scans); beyond it the distance is refused rather than answered with a meaningless c.
+    #[test]
+    fn huge_distances_are_solved_up_to_the_limit_and_refused_beyond() {
+        for d in [1e9, 1e12, MAX_DISTANCE] {
+            let c = ratio(d).unwrap();
+            assert!(c >= 2.0 - 1.0 / d && c < 2.0 + 1e-9, "c({d}) = {c}");
+            assert!(scans(d).unwrap() > 50, "{d}");
+        }
+        for d in [1.0001 * MAX_DISTANCE, 1e20, 1e300] {
+            assert!(matches!(solve(d), Err(CircleError::TooFar(_))), "{d}");
+        }
     }
 
     #[test]
