@@ -5,6 +5,8 @@ use std::time::Instant;
 use anyhow::bail;
 use rand::{RngExt, SeedableRng};
 use serde_json::json;
+use stopscan::experiment::polygon::SweepInput;
+use stopscan::kernel::tolerance::AREA_REL;
 use stopscan::offline::corner::worst_case;
 use stopscan::protocol::CostModel;
 use stopscan::protocol::corner::{AngleDistribution, CornerSetup, LastStep, Route};
@@ -149,12 +151,12 @@ fn bench_explore(a: &BenchArgs, g: &Global) -> anyhow::Result<()> {
         "",
     )?;
     let mut rng = rand_chacha::ChaCha8Rng::seed_from_u64(g.seed);
-    let inputs: Vec<_> = (0..n)
+    let inputs: Vec<SweepInput> = (0..n)
         .map(|i| {
             let rooms = rng.random_range(2..12);
             let desks = rng.random_range(0..3 * rooms);
             let inst = stopscan::generate::office(rooms, desks, g.seed.wrapping_add(i as u64))?;
-            Ok((format!("office-{i}"), inst.domain, inst.start))
+            Ok(SweepInput { name: format!("office-{i}"), domain: inst.domain, start: inst.start })
         })
         .collect::<anyhow::Result<_>>()?;
     let t = Instant::now();
@@ -170,13 +172,16 @@ fn bench_explore(a: &BenchArgs, g: &Global) -> anyhow::Result<()> {
     let failing: Vec<_> = rows
         .iter()
         .filter(|r| {
-            !r.error.is_empty() || !r.within_bound || r.open_windows > 0 || r.coverage < 1.0 - 1e-9
+            !r.error.is_empty()
+                || !r.within_bound
+                || r.open_windows > 0
+                || r.coverage < 1.0 - AREA_REL
         })
         .collect();
     let details: Vec<_> = failing
         .iter()
         .take(20)
-        .map(|r| json!({"environment": r.environment, "scans": r.scans, "scans_upper": r.scans_upper, "coverage": r.coverage, "open_windows": r.open_windows, "error": r.error}))
+        .map(|r| json!({"environment": r.environment, "scans": r.totals.scans, "scans_upper": r.scans_upper, "coverage": r.coverage, "open_windows": r.open_windows, "error": r.error}))
         .collect();
     let value = json!({
         "name": "explore-office-sweep", "n": n, "seconds_median": secs, "per_second": n as f64 / secs,

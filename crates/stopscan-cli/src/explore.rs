@@ -131,14 +131,15 @@ fn summary(w: &mut dyn Write, o: &RunRecord) -> std::io::Result<()> {
         ),
         (None, None) => b.optimum_note.clone(),
     };
+    let tt = &m.totals;
     let rows: Vec<(&str, String)> = vec![
-        ("scans", m.scans.to_string()),
-        ("moves", m.moves.to_string()),
-        ("distance (m)", num(Some(m.distance), 3)),
-        ("scan time (s)", num(Some(m.scan_time_total), 3)),
-        ("move time (s)", num(Some(m.move_time_total), 3)),
-        ("travel time (s)", num(Some(m.travel_time_total), 3)),
-        ("total time (s)", num(Some(m.time), 3)),
+        ("scans", tt.scans.to_string()),
+        ("moves", tt.moves.to_string()),
+        ("distance (m)", num(Some(tt.distance), 3)),
+        ("scan time (s)", num(Some(tt.scan_time_total), 3)),
+        ("move time (s)", num(Some(tt.move_time_total), 3)),
+        ("travel time (s)", num(Some(tt.travel_time_total), 3)),
+        ("total time (s)", num(Some(tt.time), 3)),
         ("coverage", num(Some(m.coverage), 9)),
         ("windows left open", m.open_windows.to_string()),
         ("upper bound (paper)", format!("{} ({})", b.scans_upper, b.scans_upper_rule)),
@@ -188,7 +189,7 @@ fn sweep(a: &ExploreArgs, g: &Global, options: &ExploreOptions) -> anyhow::Resul
     atomic::write(&out, |w| {
         let mut csv = csv::Writer::from_writer(w);
         for r in &rows {
-            csv.serialize(r)?;
+            csv.serialize(r.csv_row())?;
         }
         csv.flush()
     })?;
@@ -214,14 +215,14 @@ fn print_sweep(rows: &[SweepRow], out: &Path) -> anyhow::Result<()> {
             r.environment.clone(),
             r.strategy.clone(),
             r.reflex_vertices.to_string(),
-            r.scans.to_string(),
+            r.totals.scans.to_string(),
             r.scans_upper.to_string(),
             if r.error.is_empty() {
                 r.within_bound.to_string()
             } else {
                 format!("error: {}", r.error)
             },
-            num(Some(r.distance), 2),
+            num(Some(r.totals.distance), 2),
             num(Some(r.coverage), 9),
         ]);
     }

@@ -22,7 +22,7 @@ pub(crate) fn import(a: &ImportArgs, g: &Global) -> anyhow::Result<()> {
     } else {
         stopscan::io::read_environment(&a.file)?
     };
-    let start = start.map(|s| env.frame.to_local(s)).or_else(|| env.queries.first().copied());
+    let start = start.map(|s| env.frame.to_local(s)).or_else(|| env.default_start());
     let geo = stopscan::io::text_formats::to_geojson_in(&env.domain, start, &env.frame);
     stopscan::io::atomic::write_json(&a.output, &geo)?;
     let d = &env.domain;

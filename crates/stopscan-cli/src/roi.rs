@@ -238,7 +238,7 @@ fn summary(w: &mut dyn Write, r: &GridRunRecord) -> std::io::Result<()> {
     let mut t = Table::new(&["quantity", "value"]);
     let opt = |v: Option<f64>, d: usize| v.map_or_else(|| "-".to_string(), |x| num(Some(x), d));
     let rows: Vec<(&str, String)> = vec![
-        ("exploration time (s)", num(Some(m.time), 3)),
+        ("exploration time (s)", num(Some(m.totals.time), 3)),
         ("upper bound, Lemma 1 (s)", num(Some(b.bounds.lemma1_upper), 3)),
         (
             "within Lemma 1",
@@ -259,7 +259,7 @@ fn summary(w: &mut dyn Write, r: &GridRunRecord) -> std::io::Result<()> {
             format!("{} of {} ({})", m.visited_cells, r.cells, num(Some(m.coverage), 4)),
         ),
         ("all robots back at the start", m.all_home.to_string()),
-        ("scans / moves", format!("{} / {}", m.scans, m.moves)),
+        ("scans / moves", format!("{} / {}", m.totals.scans, m.totals.moves)),
         ("battery swaps", r.robots.iter().map(|x| x.battery_swaps).sum::<u32>().to_string()),
         ("mapped cells", m.mapped_cells.map_or("-".into(), |x| x.to_string())),
         ("IoU of the map", opt(m.iou, 4)),

@@ -13,8 +13,8 @@ use crate::kernel::Point;
 use crate::kernel::tolerance::SAME_VALUE_REL;
 use crate::offline::grid::GridBounds;
 use crate::offline::polygon::{References, upper_bound};
-use crate::protocol::CostModel;
 use crate::protocol::grid::Cell;
+use crate::protocol::{CostModel, RunTotals};
 use crate::sim::grid::Mission;
 use crate::sim::polygon::PolygonRun;
 use crate::world::grid::{Drift, GridWorld};
@@ -78,20 +78,9 @@ pub struct RobotRecord {
 /// `"metrics"`.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 pub struct Metrics {
-    /// Scans.
-    pub scans: u64,
-    /// Moves.
-    pub moves: u64,
-    /// Metres driven.
-    pub distance: f64,
-    /// Total time, s.
-    pub time: f64,
-    /// `scan_time · scans`.
-    pub scan_time_total: f64,
-    /// `move_time · moves`.
-    pub move_time_total: f64,
-    /// `distance / speed`.
-    pub travel_time_total: f64,
+    /// Scans, moves, distance and the time split into its terms.
+    #[serde(flatten)]
+    pub totals: RunTotals,
     /// The free area less what no scan covers, m².
     pub covered_area: f64,
     /// `covered_area / free_area`, where the area not covered counts only the pieces of the
@@ -263,13 +252,7 @@ impl RunRecord {
                     .collect(),
             }],
             metrics: Metrics {
-                scans: run.tally.scans,
-                moves: run.tally.moves,
-                distance: run.tally.distance,
-                time: run.time.total(),
-                scan_time_total: run.time.scan_time_total,
-                move_time_total: run.time.move_time_total,
-                travel_time_total: run.time.travel_time_total,
+                totals: RunTotals::new(&run.tally, run.time.total(), &run.time),
                 covered_area: free - uncovered,
                 coverage: 1.0 - uncovered / free,
                 open_windows,
@@ -350,20 +333,10 @@ pub struct GridRobotRecord {
 /// `"metrics"` of a grid run.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 pub struct GridMetrics {
-    /// Scans (all robots).
-    pub scans: u64,
-    /// Moves (all robots).
-    pub moves: u64,
-    /// Metres flown in the fixed frame (all robots).
-    pub distance: f64,
-    /// The exploration time: when the last robot is back (Problem 1), seconds.
-    pub time: f64,
-    /// `scan_time · scans` (all robots).
-    pub scan_time_total: f64,
-    /// `move_time · moves` (all robots).
-    pub move_time_total: f64,
-    /// Seconds of flight (all robots).
-    pub travel_time_total: f64,
+    /// Scans, moves, metres flown in the fixed frame, and the time split into its terms (all
+    /// robots). `time` is the exploration time: when the last robot is back (Problem 1).
+    #[serde(flatten)]
+    pub totals: RunTotals,
     /// Region cells some robot stood on.
     pub visited_cells: usize,
     /// Their area, m² (DESIGN.md's `covered_area`).
@@ -493,13 +466,7 @@ impl GridRunRecord {
             sensor: serde_json::to_value(world.sensor()).unwrap_or_default(),
             robots,
             metrics: GridMetrics {
-                scans: tally.scans,
-                moves: tally.moves,
-                distance: tally.distance,
-                time,
-                scan_time_total: cost.scan_time * tally.scans as f64,
-                move_time_total: cost.move_time * tally.moves as f64,
-                travel_time_total: tally.distance / cost.speed,
+                totals: RunTotals::new(&tally, time, &cost.price(&tally)),
                 visited_cells: visited,
                 covered_area: visited as f64 * s * s,
                 coverage: visited as f64 / roi.len() as f64,

@@ -67,10 +67,10 @@ fn the_lower_bounds_hold_point_by_point() {
         assert!(lb.views > lb.packing, "{name}: {lb:?}");
         let mesh = vis.mesh();
         let sees = |g: Point, w: Point| segment_is_free(mesh, g, w);
-        for &w in lb.packing_points.iter().chain(lb.lp_weights.iter().map(|w| &w.0)) {
+        for &w in lb.packing_points.iter().chain(lb.lp_weights.iter().map(|w| &w.at)) {
             assert!(!sees(inst.start, w), "{name}: the start sees witness {w:?}");
         }
-        let total: f64 = lb.lp_weights.iter().map(|w| w.1).sum();
+        let total: f64 = lb.lp_weights.iter().map(|w| w.weight).sum();
         if let Some(lp) = lb.lp {
             assert!((lp - total).abs() < 1e-9, "{name}");
             assert!(lb.views > (lp - 1e-9).ceil() as usize);
@@ -78,7 +78,7 @@ fn the_lower_bounds_hold_point_by_point() {
         for g in samples(&inst.domain, 60) {
             let two = lb.packing_points.iter().filter(|&&w| sees(g, w)).count();
             assert!(two <= 1, "{name}: {g:?} sees {two} packing witnesses");
-            let depth: f64 = lb.lp_weights.iter().filter(|w| sees(g, w.0)).map(|w| w.1).sum();
+            let depth: f64 = lb.lp_weights.iter().filter(|w| sees(g, w.at)).map(|w| w.weight).sum();
             assert!(depth <= 1.0 + 1e-9, "{name}: {g:?} sees weight {depth}");
         }
     }

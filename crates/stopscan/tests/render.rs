@@ -13,13 +13,13 @@ fn legends_never_cover_data_in_the_produced_charts() {
     for id in ["corner-fig-7", "corner-fig-8", "roi-fig-7"] {
         charts.extend(experiment::reproduce(id, 2, 1).unwrap().charts);
     }
-    charts.push(("demo".into(), experiment::corner::demo().unwrap().chart));
+    charts.push(experiment::NamedChart::new("demo", experiment::corner::demo().unwrap().chart));
     assert!(charts.len() >= 7);
-    for (name, chart) in &charts {
+    for experiment::NamedChart { stem: name, chart } in &charts {
         let l = chart_layout(chart).unwrap();
         assert!(!l.legend.meets_any(&l.lines, LEGEND_CLEARANCE), "{name}");
-        assert!(l.legend.left >= 0.0 && l.legend.right <= l.plot.0, "{name}");
-        assert!(l.legend.top >= 0.0 && l.legend.bottom <= l.plot.1, "{name}");
+        assert!(l.legend.left >= 0.0 && l.legend.right <= l.plot.width, "{name}");
+        assert!(l.legend.top >= 0.0 && l.legend.bottom <= l.plot.height, "{name}");
         if name.starts_with("roi-fig-7") || name.starts_with("corner-fig") {
             assert!(!chart.subtitle.is_empty(), "{name} states no fixed parameters");
         }

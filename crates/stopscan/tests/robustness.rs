@@ -137,7 +137,7 @@ fn a_georeferenced_polygon_is_moved_exactly_and_explored_completely() {
         let (outer, holes) = rings.split_first().unwrap();
         let shifted = Domain::new(outer.clone(), holes.to_vec()).unwrap();
         let start = [inst.start[0] + off, inst.start[1] - off];
-        let env = Environment::new(shifted.clone(), vec![start]).localised().unwrap();
+        let env = Environment::new(shifted.clone()).with_start(Some(start)).localised().unwrap();
         assert!(!env.frame.is_identity());
         // Exact: back in the input's frame, every vertex is the input's.
         for (a, b) in env.domain.rings().iter().zip(shifted.rings()) {
@@ -147,7 +147,7 @@ fn a_georeferenced_polygon_is_moved_exactly_and_explored_completely() {
         for s in REGISTRY.names() {
             let range = (s == "range_limited").then_some(5.0);
             let w = PolygonWorld::with_range(env.domain.clone(), range).unwrap();
-            let run = explore(&w, env.queries[0], s);
+            let run = explore(&w, env.start.unwrap(), s);
             assert_complete(&w, &run, &format!("{s}, offset {off}"));
         }
     }

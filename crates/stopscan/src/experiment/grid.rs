@@ -8,7 +8,7 @@ use std::fmt::Write;
 use rayon::prelude::*;
 use serde::{Deserialize, Serialize};
 
-use super::{ExperimentError, Reproduction, Row, sample_seed};
+use super::{CsvTable, ExperimentError, NamedChart, Reproduction, Row, sample_seed};
 use crate::kernel::tolerance::SAME_VALUE_REL;
 use crate::offline::grid::GridBounds;
 use crate::protocol::CostModel;
@@ -237,11 +237,11 @@ pub fn reproduce(trials: usize, seed: u64) -> Result<Reproduction, ExperimentErr
         ],
     )
     .with_charts(vec![
-        ("roi-fig-7b".into(), chart(&rows, "cells", "Fig. 7 (b): time against the number of cells", "cells C")),
-        ("roi-fig-7c".into(), chart(&rows, "robots", "Fig. 7 (c): time against the number of robots", "robots R")),
-        ("roi-fig-7d".into(), chart(&rows, "speed_ratio", "Fig. 7 (d): time against the speed ratio", "S_r / S_p")),
+        NamedChart::new("roi-fig-7b", chart(&rows, "cells", "Fig. 7 (b): time against the number of cells", "cells C")),
+        NamedChart::new("roi-fig-7c", chart(&rows, "robots", "Fig. 7 (c): time against the number of robots", "robots R")),
+        NamedChart::new("roi-fig-7d", chart(&rows, "speed_ratio", "Fig. 7 (d): time against the speed ratio", "S_r / S_p")),
     ])
-    .with_tables(vec![("roi-fig-7.csv".into(), csv(&rows))]))
+    .with_tables(vec![CsvTable { file: "roi-fig-7.csv".into(), csv: csv(&rows) }]))
 }
 
 #[cfg(test)]

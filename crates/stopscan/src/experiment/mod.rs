@@ -160,13 +160,49 @@ pub struct Reproduction {
     pub notes: Vec<String>,
     /// Charts to write with `--out`.
     #[serde(skip)]
-    pub charts: Vec<(String, LineChart)>,
+    pub charts: Vec<NamedChart>,
     /// Policy images to write with `--out`.
     #[serde(skip)]
-    pub images: Vec<(String, String, Vec<Vec<StateAction>>)>,
-    /// Tables to write with `--out`: (file name, CSV text).
+    pub images: Vec<PolicyImage>,
+    /// Tables to write with `--out`.
     #[serde(skip)]
-    pub tables: Vec<(String, String)>,
+    pub tables: Vec<CsvTable>,
+}
+
+/// A chart of a [`Reproduction`], written as `<stem>.svg` and `<stem>.png`.
+#[derive(Debug, Clone, PartialEq)]
+pub struct NamedChart {
+    /// The file stem.
+    pub stem: String,
+    /// The chart.
+    pub chart: LineChart,
+}
+
+impl NamedChart {
+    /// A chart under a file stem.
+    pub fn new(stem: impl Into<String>, chart: LineChart) -> Self {
+        Self { stem: stem.into(), chart }
+    }
+}
+
+/// A policy image of a [`Reproduction`]: the action in every MDP state, drawn as a picture.
+#[derive(Debug, Clone, PartialEq)]
+pub struct PolicyImage {
+    /// The file stem.
+    pub stem: String,
+    /// The picture's title.
+    pub title: String,
+    /// The action in each state, one row per robot stop.
+    pub actions: Vec<Vec<StateAction>>,
+}
+
+/// A table of a [`Reproduction`], written as CSV.
+#[derive(Debug, Clone, PartialEq)]
+pub struct CsvTable {
+    /// The file name, with its `.csv` extension.
+    pub file: String,
+    /// The CSV text.
+    pub csv: String,
 }
 
 impl Reproduction {
@@ -191,23 +227,23 @@ impl Reproduction {
         }
     }
 
-    /// Sets the charts to write with `--out`: (file stem, chart).
+    /// Sets the charts to write with `--out`.
     #[must_use]
-    pub fn with_charts(mut self, charts: Vec<(String, LineChart)>) -> Self {
+    pub fn with_charts(mut self, charts: Vec<NamedChart>) -> Self {
         self.charts = charts;
         self
     }
 
-    /// Sets the policy images to write with `--out`: (file stem, title, cells).
+    /// Sets the policy images to write with `--out`.
     #[must_use]
-    pub fn with_images(mut self, images: Vec<(String, String, Vec<Vec<StateAction>>)>) -> Self {
+    pub fn with_images(mut self, images: Vec<PolicyImage>) -> Self {
         self.images = images;
         self
     }
 
-    /// Sets the tables to write with `--out`: (file name, CSV text).
+    /// Sets the tables to write with `--out`.
     #[must_use]
-    pub fn with_tables(mut self, tables: Vec<(String, String)>) -> Self {
+    pub fn with_tables(mut self, tables: Vec<CsvTable>) -> Self {
         self.tables = tables;
         self
     }

@@ -6,7 +6,7 @@ use crate::algorithm::region::Region;
 use crate::generate::{spiral, star};
 use crate::kernel::tolerance::AREA_REL;
 use crate::offline::polygon::References;
-use crate::protocol::CostModel;
+use crate::protocol::{CostModel, RunTotals};
 use crate::run_record::RunRecord;
 use crate::sim::NoObserver;
 use crate::sim::polygon::{PolygonRun, run};
@@ -146,7 +146,7 @@ fn views_benchmarks(data: &std::path::Path) -> Result<Reproduction, ExperimentEr
     for f in &files {
         let (env, start) = crate::io::sweep::read_with_start(f)?;
         let name = f.strip_prefix(data).unwrap_or(f).display().to_string();
-        inputs.push((name, env.domain, start));
+        inputs.push(SweepInput { name, domain: env.domain, start });
     }
     let names: Vec<&str> = crate::strategy::polygon::REGISTRY.names().collect();
     // A node budget, not a clock, bounds the optimum's search (with a generous clock as a
@@ -161,14 +161,14 @@ fn views_benchmarks(data: &std::path::Path) -> Result<Reproduction, ExperimentEr
         sweep(&inputs, &names, &CostModel::default(), None, limits.bounds_seconds, &|| {});
     let refs: Vec<Result<References, crate::offline::polygon::OfflineError>> = inputs
         .par_iter()
-        .map(|(_, d, start)| {
-            let vis = crate::algorithm::visibility::Visibility::new(d.clone())?;
-            crate::offline::polygon::references(&vis, *start, None, limits, &mut |_| {})
+        .map(|input| {
+            let vis = crate::algorithm::visibility::Visibility::new(input.domain.clone())?;
+            crate::offline::polygon::references(&vis, input.start, None, limits, &mut |_| {})
         })
         .collect();
     let mut rows = Vec::new();
     let (mut within, mut complete, mut failed) = (0, 0, Vec::new());
-    for (i, (name, _, _)) in inputs.iter().enumerate() {
+    for (i, SweepInput { name, .. }) in inputs.iter().enumerate() {
         for row in sweep_rows.iter().filter(|r| &r.environment == name) {
             if !row.error.is_empty() {
                 failed.push(format!("{name} · {}: {}", row.strategy, row.error));
@@ -179,7 +179,7 @@ fn views_benchmarks(data: &std::path::Path) -> Result<Reproduction, ExperimentEr
             rows.push(Row::new(
                 format!("{name} · {}: scans (paper: the bound r + 1)", row.strategy),
                 Some(row.scans_upper as f64),
-                row.scans as f64,
+                row.totals.scans as f64,
             ));
             if let Some(c) = row.certified_ratio {
                 rows.push(Row::new(
@@ -256,7 +256,8 @@ fn reference_rows(name: &str, r: &References) -> Vec<Row> {
     rows
 }
 
-/// One row of an exploration sweep (the CSV's columns; metric names as in the run record).
+/// One row of an exploration sweep (metric names as in the run record). JSON embeds
+/// [`RunTotals`] flattened; the CSV, which needs flat rows, is [`SweepRow::csv_row`].
 #[derive(Debug, Clone, PartialEq, serde::Serialize, serde::Deserialize)]
 pub struct SweepRow {
     /// Environment name.
@@ -271,20 +272,9 @@ pub struct SweepRow {
     pub reflex_vertices: usize,
     /// Free area.
     pub free_area: f64,
-    /// Scans.
-    pub scans: u64,
-    /// Moves.
-    pub moves: u64,
-    /// Metres.
-    pub distance: f64,
-    /// Total time.
-    pub time: f64,
-    /// Scan time.
-    pub scan_time_total: f64,
-    /// Move time.
-    pub move_time_total: f64,
-    /// Travel time.
-    pub travel_time_total: f64,
+    /// Scans, moves, distance and the time split into its terms.
+    #[serde(flatten)]
+    pub totals: RunTotals,
     /// Covered area over free area.
     pub coverage: f64,
     /// Windows no other scan looks through (0: the free space was seen whole).
@@ -314,13 +304,7 @@ impl SweepRow {
             holes: 0,
             reflex_vertices: 0,
             free_area: 0.0,
-            scans: 0,
-            moves: 0,
-            distance: 0.0,
-            time: 0.0,
-            scan_time_total: 0.0,
-            move_time_total: 0.0,
-            travel_time_total: 0.0,
+            totals: RunTotals::default(),
             coverage: 0.0,
             open_windows: 0,
             scans_upper: 0,
@@ -333,8 +317,73 @@ impl SweepRow {
     }
 }
 
-/// An environment to sweep: name, domain and start.
-pub type SweepInput = (String, crate::geometry::Domain, crate::kernel::Point);
+/// [`SweepRow`] flattened by hand for CSV (which has no nested columns), borrowing the row.
+#[derive(serde::Serialize)]
+pub struct SweepCsvRow<'a> {
+    environment: &'a str,
+    strategy: &'a str,
+    vertices: usize,
+    holes: usize,
+    reflex_vertices: usize,
+    free_area: f64,
+    scans: u64,
+    moves: u64,
+    distance: f64,
+    time: f64,
+    scan_time_total: f64,
+    move_time_total: f64,
+    travel_time_total: f64,
+    coverage: f64,
+    open_windows: usize,
+    scans_upper: usize,
+    within_bound: bool,
+    scans_lower: usize,
+    time_lower: f64,
+    certified_ratio: Option<f64>,
+    error: &'a str,
+}
+
+impl SweepRow {
+    /// The row as the sweep CSV writes it: one flat record, columns in the order of the
+    /// fields (with [`RunTotals`]' fields in its place).
+    pub fn csv_row(&self) -> SweepCsvRow<'_> {
+        let t = &self.totals;
+        SweepCsvRow {
+            environment: &self.environment,
+            strategy: &self.strategy,
+            vertices: self.vertices,
+            holes: self.holes,
+            reflex_vertices: self.reflex_vertices,
+            free_area: self.free_area,
+            scans: t.scans,
+            moves: t.moves,
+            distance: t.distance,
+            time: t.time,
+            scan_time_total: t.scan_time_total,
+            move_time_total: t.move_time_total,
+            travel_time_total: t.travel_time_total,
+            coverage: self.coverage,
+            open_windows: self.open_windows,
+            scans_upper: self.scans_upper,
+            within_bound: self.within_bound,
+            scans_lower: self.scans_lower,
+            time_lower: self.time_lower,
+            certified_ratio: self.certified_ratio,
+            error: &self.error,
+        }
+    }
+}
+
+/// An environment to sweep.
+#[derive(Debug, Clone)]
+pub struct SweepInput {
+    /// Its name (the file name), the sweep rows' `environment`.
+    pub name: String,
+    /// The free space.
+    pub domain: crate::geometry::Domain,
+    /// Where every run starts.
+    pub start: crate::kernel::Point,
+}
 
 /// Explores every input with every strategy, in parallel (rayon); rows come back in input
 /// order, strategies in the given order, whatever the thread count. `range` limits the
@@ -351,17 +400,17 @@ pub fn sweep(
     use rayon::prelude::*;
     let lower: Vec<Option<crate::offline::polygon::LowerBounds>> = inputs
         .par_iter()
-        .map(|(_, domain, start)| {
-            let vis = crate::algorithm::visibility::Visibility::new(domain.clone()).ok()?;
+        .map(|input| {
+            let vis = crate::algorithm::visibility::Visibility::new(input.domain.clone()).ok()?;
             let deadline = crate::offline::polygon::deadline_in(bounds_seconds);
-            crate::offline::polygon::lower_bounds(&vis, *start, range, deadline).ok()
+            crate::offline::polygon::lower_bounds(&vis, input.start, range, deadline).ok()
         })
         .collect();
     let jobs: Vec<(usize, usize)> =
         (0..inputs.len()).flat_map(|i| (0..strategies.len()).map(move |s| (i, s))).collect();
     jobs.par_iter()
         .map(|&(i, s)| {
-            let (name, domain, start) = &inputs[i];
+            let SweepInput { name, domain, start } = &inputs[i];
             let row =
                 sweep_one(name, domain, *start, strategies[s], cost, range, lower[i].as_ref());
             tick();
@@ -410,16 +459,10 @@ fn sweep_one(
     match outcome {
         Ok(rec) => {
             let m = rec.metrics;
-            row.scans = m.scans;
-            row.moves = m.moves;
-            row.distance = m.distance;
-            row.time = m.time;
-            row.scan_time_total = m.scan_time_total;
-            row.move_time_total = m.move_time_total;
-            row.travel_time_total = m.travel_time_total;
+            row.totals = m.totals;
             row.coverage = m.coverage;
             row.open_windows = m.open_windows;
-            row.within_bound = m.scans as usize <= upper;
+            row.within_bound = m.totals.scans as usize <= upper;
             row.scans_lower = rec.bounds.scans_lower;
             row.time_lower = rec.bounds.time_lower;
             row.certified_ratio = rec.bounds.certified_ratio;

@@ -86,8 +86,8 @@ pub fn read_roi(path: &Path, opts: &GridOptions) -> Result<GridRoi, LoadError> {
         });
     }
     let env = super::read_environment(path)?;
-    let start = match env.queries.first() {
-        Some(&s) => s,
+    let start = match env.default_start() {
+        Some(s) => s,
         None => crate::world::polygon::PolygonWorld::new(env.domain.clone())
             .map_err(|e| LoadError::Syntax { file: file.clone(), line: 0, reason: e.to_string() })?
             .interior_point(),

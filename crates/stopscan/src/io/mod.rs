@@ -64,14 +64,17 @@ pub(crate) fn line_suffix(line: usize) -> String {
     if line == 0 { String::new() } else { format!(":{line}") }
 }
 
-/// An environment and the query points it may carry, in the local frame computations run
-/// in ([`Frame`]).
+/// An environment with the start and query points it may carry, in the local frame
+/// computations run in ([`Frame`]).
 #[derive(Debug, Clone)]
 pub struct Environment {
     /// The validated domain (local frame).
     pub domain: crate::geometry::Domain,
-    /// Query points carried by the file (the benchmark format has them; GeoJSON its start),
-    /// in the local frame.
+    /// The robot's start carried by the file (GeoJSON's `start` property, a ROS map's
+    /// `--start`), in the local frame.
+    pub start: Option<crate::kernel::Point>,
+    /// Visibility query points carried by the file (the benchmark format's `QUERIES`
+    /// section), in the local frame.
     pub queries: Vec<crate::kernel::Point>,
     /// The file's frame: `input = local + frame.origin`. Points the user gives are moved into
     /// the local frame with [`Frame::to_local`], and results back with [`Frame::to_input`].
@@ -79,9 +82,28 @@ pub struct Environment {
 }
 
 impl Environment {
-    /// An environment in its input's own frame.
-    pub fn new(domain: crate::geometry::Domain, queries: Vec<crate::kernel::Point>) -> Self {
-        Self { domain, queries, frame: Frame::IDENTITY }
+    /// An environment in its input's own frame, with no start and no query points.
+    pub fn new(domain: crate::geometry::Domain) -> Self {
+        Self { domain, start: None, queries: Vec::new(), frame: Frame::IDENTITY }
+    }
+
+    /// The same environment with this start.
+    #[must_use]
+    pub fn with_start(self, start: Option<crate::kernel::Point>) -> Self {
+        Self { start, ..self }
+    }
+
+    /// The same environment with these query points.
+    #[must_use]
+    pub fn with_queries(self, queries: Vec<crate::kernel::Point>) -> Self {
+        Self { queries, ..self }
+    }
+
+    /// Where a run starts unless told otherwise: the file's start, else its first query
+    /// point (a benchmark file's first query), else `None` (the caller picks an interior
+    /// point).
+    pub fn default_start(&self) -> Option<crate::kernel::Point> {
+        self.start.or_else(|| self.queries.first().copied())
     }
 
     /// The same environment moved next to the origin when its coordinates lie far from it
@@ -104,7 +126,8 @@ impl Environment {
         let outer = rings.remove(0);
         let domain = crate::geometry::Domain::new(outer, rings)?;
         let queries = self.queries.iter().map(|&q| frame.to_local(q)).collect();
-        Ok(Self { domain, queries, frame })
+        let start = self.start.map(|s| frame.to_local(s));
+        Ok(Self { domain, start, queries, frame })
     }
 }
 
@@ -139,7 +162,7 @@ fn read_in_input_frame(path: &std::path::Path) -> Result<Environment, LoadError>
     }
     if first.starts_with("OUTER") {
         let e = bench_format::parse(&text, &file)?;
-        return Ok(Environment::new(e.domain, e.queries));
+        return Ok(Environment::new(e.domain).with_queries(e.queries));
     }
     if first.starts_with('{') || matches!(ext.as_deref(), Some("geojson" | "json")) {
         return text_formats::parse_geojson(&text, &file);

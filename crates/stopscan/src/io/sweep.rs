@@ -19,14 +19,15 @@ pub enum SweepLoadError {
     Visibility(#[from] VisibilityError),
 }
 
-/// Where a run in `env` starts when no start is given: the file's start (its first query
-/// point), else the centroid of the first triangle of its free space. Local frame.
+/// Where a run in `env` starts when no start is given: [`Environment::default_start`] (the
+/// file's start, else its first query point), else the centroid of the first triangle of its
+/// free space. Local frame.
 ///
 /// # Errors
 /// [`VisibilityError`] if the free space cannot be triangulated.
 pub fn default_start(env: &Environment) -> Result<Point, VisibilityError> {
-    match env.queries.first() {
-        Some(&p) => Ok(p),
+    match env.default_start() {
+        Some(p) => Ok(p),
         None => Ok(PolygonWorld::new(env.domain.clone())?.interior_point()),
     }
 }
@@ -40,6 +41,6 @@ pub fn default_start(env: &Environment) -> Result<Point, VisibilityError> {
 pub fn read_with_start(path: &Path) -> Result<(Environment, Point), SweepLoadError> {
     let env = read_environment(path)?;
     let world = PolygonWorld::new(env.domain.clone())?;
-    let start = env.queries.first().copied().unwrap_or_else(|| world.interior_point());
+    let start = env.default_start().unwrap_or_else(|| world.interior_point());
     Ok((env, start))
 }

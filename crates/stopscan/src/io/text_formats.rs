@@ -121,7 +121,7 @@ pub fn parse_geojson(text: &str, file: &str) -> Result<Environment, LoadError> {
             )
         })?),
     };
-    Ok(Environment::new(domain, start.into_iter().collect()))
+    Ok(Environment::new(domain).with_start(start))
 }
 
 /// `[x, y]`: exactly two finite numbers (unlike coordinates, a start has no altitude).
@@ -229,7 +229,7 @@ pub fn parse_wkt(text: &str, file: &str) -> Result<Environment, LoadError> {
             ),
         ));
     }
-    Ok(Environment::new(build(file, rings)?, vec![]))
+    Ok(Environment::new(build(file, rings)?))
 }
 
 /// Parses a `.pol` file (one line of whitespace-separated tokens).
@@ -252,7 +252,7 @@ pub fn parse_pol(text: &str, file: &str) -> Result<Environment, LoadError> {
             format!("{} unexpected tokens after the polygon", c.list.len() - c.k),
         ));
     }
-    Ok(Environment::new(build(file, rings)?, vec![]))
+    Ok(Environment::new(build(file, rings)?))
 }
 
 struct Tokens<'a> {
@@ -354,7 +354,8 @@ mod tests {
         let text = r#"{"type":"Feature","properties":{"start":[3,3]},"geometry":{"type":"Polygon","coordinates":[[[0,0],[4,0],[4,4],[0,4],[0,0]],[[1,1],[1,2],[2,2],[2,1],[1,1]]]}}"#;
         let e = parse_geojson(text, "t").unwrap();
         assert_eq!(e.domain.vertex_count(), 8);
-        assert_eq!(e.queries, vec![[3.0, 3.0]]);
+        assert_eq!(e.start, Some([3.0, 3.0]));
+        assert!(e.queries.is_empty());
         let back = to_geojson(&e.domain, Some([3.0, 3.0])).to_string();
         let again = parse_geojson(&back, "t").unwrap();
         assert_eq!(again.domain, e.domain);

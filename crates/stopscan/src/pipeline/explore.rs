@@ -5,7 +5,7 @@
 //! ```no_run
 //! use stopscan::pipeline::explore::{ExploreOptions, explore_file};
 //! let run = explore_file("office.geojson".as_ref(), None, &ExploreOptions::default(), &mut |_| {})?;
-//! println!("{} scans", run.record.metrics.scans);
+//! println!("{} scans", run.record.metrics.totals.scans);
 //! # Ok::<(), stopscan::pipeline::explore::ExploreError>(())
 //! ```
 

@@ -60,15 +60,15 @@ pub fn write_files(
         stopscan_version: &'a str,
     }
     let mut files = Vec::new();
-    for (name, chart) in &r.charts {
-        files.extend(save_chart(dir, name, chart)?);
+    for c in &r.charts {
+        files.extend(save_chart(dir, &c.stem, &c.chart)?);
     }
-    for (name, title, image) in &r.images {
-        files.extend(save_policy_image(dir, name, title, image)?);
+    for i in &r.images {
+        files.extend(save_policy_image(dir, &i.stem, &i.title, &i.actions)?);
     }
-    for (name, text) in &r.tables {
-        let path = dir.join(name);
-        atomic::write_bytes(&path, text.as_bytes())?;
+    for t in &r.tables {
+        let path = dir.join(&t.file);
+        atomic::write_bytes(&path, t.csv.as_bytes())?;
         files.push(path.display().to_string());
     }
     let path = dir.join(format!("{id}.json"));

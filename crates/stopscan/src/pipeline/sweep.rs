@@ -109,7 +109,7 @@ pub fn sweep_dir(
         match crate::io::sweep::read_with_start(f) {
             Ok((env, start)) => {
                 loaded.push(Ok(inputs.len()));
-                inputs.push((name, env.domain, start));
+                inputs.push(SweepInput { name, domain: env.domain, start });
             }
             Err(e) => {
                 let error = super::error_message(&e);

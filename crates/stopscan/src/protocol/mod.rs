@@ -116,6 +116,43 @@ impl TimeBreakdown {
     }
 }
 
+/// What a run did and what it cost, term by term: the metrics every family's run record
+/// and sweep row share (DESIGN.md's names). Records embed it flattened, so its fields sit
+/// beside the family's own metrics.
+#[derive(Debug, Clone, Copy, Default, PartialEq, Serialize, Deserialize)]
+pub struct RunTotals {
+    /// Scans (all robots).
+    pub scans: u64,
+    /// Moves (all robots).
+    pub moves: u64,
+    /// Metres driven or flown (all robots).
+    pub distance: f64,
+    /// Total time, seconds: the sum of the three terms for one robot; for a team, when the
+    /// last robot is done.
+    pub time: f64,
+    /// `scan_time · scans`.
+    pub scan_time_total: f64,
+    /// `move_time · moves`.
+    pub move_time_total: f64,
+    /// `distance / speed`.
+    pub travel_time_total: f64,
+}
+
+impl RunTotals {
+    /// The totals of a tally whose terms are `terms` and whose time is `time`.
+    pub fn new(tally: &Tally, time: f64, terms: &TimeBreakdown) -> Self {
+        Self {
+            scans: tally.scans,
+            moves: tally.moves,
+            distance: tally.distance,
+            time,
+            scan_time_total: terms.scan_time_total,
+            move_time_total: terms.move_time_total,
+            travel_time_total: terms.travel_time_total,
+        }
+    }
+}
+
 /// The shared action vocabulary: every family answers move, scan or done.
 ///
 /// `P` is the family's notion of a place (a point of the plane, a stop on the corner

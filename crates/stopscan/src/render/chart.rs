@@ -14,7 +14,8 @@ use serde::{Deserialize, Serialize};
 use super::RenderError;
 use super::glyphs::PaddedText;
 use super::layout::{
-    ChartLayout, LEGEND_CLEARANCE, LEGEND_INSET, PixelBox, legend_corner, tick_label, ticks,
+    ChartLayout, LEGEND_CLEARANCE, LEGEND_INSET, PixelBox, PixelSize, legend_corner, tick_label,
+    ticks,
 };
 
 /// One line of a chart.
@@ -137,7 +138,7 @@ fn titled<DB: DrawingBackend>(
 fn legend_size<DB: DrawingBackend>(
     area: &DrawingArea<DB, Shift>,
     chart: &LineChart,
-) -> Result<((f64, f64), i32), String> {
+) -> Result<(PixelSize, i32), String> {
     let font: TextStyle = ("sans-serif", LEGEND_PX).into_font().into();
     let (mut w, mut row) = (0u32, LEGEND_PX);
     for s in &chart.series {
@@ -148,7 +149,7 @@ fn legend_size<DB: DrawingBackend>(
     let n = chart.series.len() as i32;
     let width = 2 * LEGEND_PAD + LEGEND_SAMPLE + 8 + w as i32;
     let height = 2 * LEGEND_PAD + n * row as i32 + (n - 1).max(0) * LEGEND_ROW_GAP;
-    Ok(((f64::from(width), f64::from(height)), row as i32))
+    Ok((PixelSize { width: f64::from(width), height: f64::from(height) }, row as i32))
 }
 
 /// A linear axis that puts its ticks where [`ticks`] says (plotters would pick its own).
@@ -159,8 +160,8 @@ struct Axis {
 }
 
 impl Axis {
-    fn new(range: (f64, f64), ticks: &[f64]) -> Self {
-        Self { inner: (range.0..range.1).into(), ticks: ticks.to_vec() }
+    fn new(range: std::ops::Range<f64>, ticks: &[f64]) -> Self {
+        Self { inner: range.into(), ticks: ticks.to_vec() }
     }
 }
 
@@ -184,8 +185,8 @@ impl Ranged for Axis {
 
 fn build<'a, DB: DrawingBackend>(
     area: &'a DrawingArea<DB, Shift>,
-    x: (f64, f64),
-    y: (f64, f64),
+    x: std::ops::Range<f64>,
+    y: std::ops::Range<f64>,
     xt: &[f64],
     yt: &[f64],
 ) -> Result<ChartContext<'a, DB, Cartesian2d<Axis, Axis>>, String> {
@@ -214,7 +215,7 @@ fn layout<DB: DrawingBackend>(
     let x_ticks = ticks(x0, x1, 10);
     for _ in 0..4 {
         let y_ticks = ticks(y0, y1, 8);
-        let ctx = build(area, (x0, x1), (y0, y1), &x_ticks.0, &y_ticks.0)?;
+        let ctx = build(area, x0..x1, y0..y1, &x_ticks.values, &y_ticks.values)?;
         let base = ctx.plotting_area().get_base_pixel();
         let (pw, ph) = ctx.plotting_area().dim_in_pixel();
         let px = |p: &(f64, f64)| {
@@ -229,25 +230,17 @@ fn layout<DB: DrawingBackend>(
                 lines.extend(pts.iter().map(|p| vec![px(p)]));
             }
         }
-        let plot = (f64::from(pw), f64::from(ph));
+        let plot = PixelSize { width: f64::from(pw), height: f64::from(ph) };
         if let Some(legend) = legend_corner(plot, size, &lines) {
-            return Ok(ChartLayout {
-                x: (x0, x1),
-                y: (y0, y1),
-                x_ticks,
-                y_ticks,
-                lines,
-                plot,
-                legend,
-            });
+            return Ok(ChartLayout { x: x0..x1, y: y0..y1, x_ticks, y_ticks, lines, plot, legend });
         }
         // Headroom: the top `need` pixels of the plot must hold no data. The current top
         // maps to pixel 0; raising it by e maps it to plot_h·e/(span + e).
-        let need = LEGEND_INSET + size.1 + LEGEND_CLEARANCE + 2.0;
-        if need >= plot.1 {
+        let need = LEGEND_INSET + size.height + LEGEND_CLEARANCE + 2.0;
+        if need >= plot.height {
             break;
         }
-        y1 += need * (y1 - y0) / (plot.1 - need);
+        y1 += need * (y1 - y0) / (plot.height - need);
     }
     Err(format!("chart {:?}: no room for the legend", chart.title))
 }
@@ -271,8 +264,8 @@ fn draw_chart<DB: DrawingBackend>(
     root.fill(&WHITE).map_err(|e| e.to_string())?;
     let area = titled(root, chart)?;
     let l = layout(&area, chart)?;
-    let mut ctx = build(&area, l.x, l.y, &l.x_ticks.0, &l.y_ticks.0)?;
-    let (xd, yd) = (l.x_ticks.1, l.y_ticks.1);
+    let mut ctx = build(&area, l.x.clone(), l.y.clone(), &l.x_ticks.values, &l.y_ticks.values)?;
+    let (xd, yd) = (l.x_ticks.decimals, l.y_ticks.decimals);
     ctx.configure_mesh()
         .x_desc(&chart.x_label)
         .y_desc(&chart.y_label)

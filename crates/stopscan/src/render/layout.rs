@@ -3,10 +3,19 @@
 
 use crate::kernel::tolerance::COUNT_SLACK;
 
+/// An axis's ticks and the decimals their labels print with.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Ticks {
+    /// The tick values, ascending.
+    pub values: Vec<f64>,
+    /// The decimals the step needs (0 for whole steps).
+    pub decimals: usize,
+}
+
 /// Axis ticks on `[lo, hi]`: the multiples of the finest step `m·10^k` (m = 1, 2 or 5) that
 /// gives at most `max` ticks, and the number of decimals that step needs (0 for whole steps,
 /// so counts print as `5`, not `5.0`).
-pub fn ticks(lo: f64, hi: f64, max: usize) -> (Vec<f64>, usize) {
+pub fn ticks(lo: f64, hi: f64, max: usize) -> Ticks {
     let span = (hi - lo).abs().max(f64::MIN_POSITIVE);
     let mut k = (span / max.max(1) as f64).log10().floor() as i32 - 1;
     loop {
@@ -16,8 +25,8 @@ pub fn ticks(lo: f64, hi: f64, max: usize) -> (Vec<f64>, usize) {
                 ((lo / step - COUNT_SLACK).ceil(), (hi / step + COUNT_SLACK).floor());
             if last - first + 1.0 <= max as f64 {
                 let decimals = (-k).max(0) as usize;
-                let ticks = (first as i64..=last as i64).map(|i| i as f64 * step).collect();
-                return (ticks, decimals);
+                let values = (first as i64..=last as i64).map(|i| i as f64 * step).collect();
+                return Ticks { values, decimals };
             }
         }
         k += 1;
@@ -32,6 +41,15 @@ pub fn tick_label(v: f64, decimals: usize) -> String {
     } else {
         s
     }
+}
+
+/// A width and a height in pixels.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct PixelSize {
+    /// Width.
+    pub width: f64,
+    /// Height.
+    pub height: f64,
 }
 
 /// A rectangle in pixels, `left ≤ x ≤ right`, `top ≤ y ≤ bottom`.
@@ -105,13 +123,13 @@ pub(super) const LEGEND_INSET: f64 = 8.0;
 /// (`lines`, in pixels relative to the plotting area) comes within [`LEGEND_CLEARANCE`] of
 /// it. `None` when every corner is taken.
 pub fn legend_corner(
-    plot: (f64, f64),
-    size: (f64, f64),
+    plot: PixelSize,
+    size: PixelSize,
     lines: &[Vec<(f64, f64)>],
 ) -> Option<PixelBox> {
-    let (w, h) = size;
-    let (left, right) = (LEGEND_INSET, plot.0 - LEGEND_INSET - w);
-    let (top, bottom) = (LEGEND_INSET, plot.1 - LEGEND_INSET - h);
+    let (w, h) = (size.width, size.height);
+    let (left, right) = (LEGEND_INSET, plot.width - LEGEND_INSET - w);
+    let (top, bottom) = (LEGEND_INSET, plot.height - LEGEND_INSET - h);
     [(right, top), (left, top), (right, bottom), (left, bottom)]
         .into_iter()
         .map(|(x, y)| PixelBox { left: x, top: y, right: x + w, bottom: y + h })
@@ -122,18 +140,18 @@ pub fn legend_corner(
 #[derive(Debug, Clone, PartialEq)]
 pub struct ChartLayout {
     /// X range.
-    pub x: (f64, f64),
+    pub x: std::ops::Range<f64>,
     /// Y range (raised above the data when no corner was free for the legend).
-    pub y: (f64, f64),
-    /// X ticks and their decimals.
-    pub x_ticks: (Vec<f64>, usize),
-    /// Y ticks and their decimals.
-    pub y_ticks: (Vec<f64>, usize),
-    /// Every series (one polyline, and one single-point line per marker), in pixels relative
-    /// to the plotting area.
+    pub y: std::ops::Range<f64>,
+    /// X ticks.
+    pub x_ticks: Ticks,
+    /// Y ticks.
+    pub y_ticks: Ticks,
+    /// Every series (one polyline, and one single-point line per marker), as `(x, y)` pixels
+    /// relative to the plotting area (the drawing backend's coordinate pairs).
     pub lines: Vec<Vec<(f64, f64)>>,
     /// The plotting area's size in pixels.
-    pub plot: (f64, f64),
+    pub plot: PixelSize,
     /// The legend box, relative to the plotting area.
     pub legend: PixelBox,
 }
@@ -145,16 +163,16 @@ mod tests {
     #[test]
     fn count_axes_print_whole_numbers() {
         // Fig. 7 (c): 1 to 32 robots, padded by 4%.
-        let (t, d) = ticks(1.0 - 1.24, 32.0 + 1.24, 10);
+        let Ticks { values: t, decimals: d } = ticks(1.0 - 1.24, 32.0 + 1.24, 10);
         assert_eq!(d, 0);
         let labels: Vec<String> = t.iter().map(|&v| tick_label(v, d)).collect();
         assert_eq!(labels, ["0", "5", "10", "15", "20", "25", "30"]);
         // Cells 40–400.
-        let (t, d) = ticks(25.6, 414.4, 10);
+        let Ticks { values: t, decimals: d } = ticks(25.6, 414.4, 10);
         assert_eq!((t[0], d), (50.0, 0));
         assert!(t.iter().all(|v| !tick_label(*v, d).contains('.')));
         // A fractional axis keeps one decimal throughout: 1.5, 2.0, … 6.0.
-        let (t, d) = ticks(1.32, 6.18, 10);
+        let Ticks { values: t, decimals: d } = ticks(1.32, 6.18, 10);
         assert_eq!(d, 1);
         assert_eq!(tick_label(t[0], d), "1.5");
         assert_eq!(tick_label(t[1], d), "2.0");
@@ -162,15 +180,15 @@ mod tests {
         // Sign of zero and tiny steps.
         assert_eq!(tick_label(-0.0, 0), "0");
         assert_eq!(tick_label(-1e-17, 2), "0.00");
-        let (t, d) = ticks(0.0, 0.003, 8);
+        let Ticks { values: t, decimals: d } = ticks(0.0, 0.003, 8);
         assert_eq!(d, 4);
         assert_eq!(tick_label(t[1], d), "0.0005");
     }
 
     #[test]
     fn legend_takes_the_first_free_corner() {
-        let plot = (800.0, 400.0);
-        let size = (150.0, 80.0);
+        let plot = PixelSize { width: 800.0, height: 400.0 };
+        let size = PixelSize { width: 150.0, height: 80.0 };
         // A flat line along the top covers both upper corners.
         let top = vec![(0.0, 20.0), (800.0, 20.0)];
         let b = legend_corner(plot, size, std::slice::from_ref(&top)).unwrap();

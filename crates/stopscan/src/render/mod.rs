@@ -22,7 +22,9 @@ mod roi;
 mod scene;
 
 pub use chart::{CHART_SIZE, LineChart, Series, chart_layout, write_chart};
-pub use layout::{ChartLayout, LEGEND_CLEARANCE, PixelBox, legend_corner, tick_label, ticks};
+pub use layout::{
+    ChartLayout, LEGEND_CLEARANCE, PixelBox, PixelSize, Ticks, legend_corner, tick_label, ticks,
+};
 pub use policy::write_policy_image;
 pub use roi::roi_svg;
 pub use scene::{exploration_svg, scene_svg};

@@ -84,7 +84,7 @@ pub fn roi_svg(roi: &GridRoi, mapped: Option<&[Cell]>, record: &GridRunRecord) -
     let steps: usize = record.robots.iter().map(|r| r.cells.len()).sum();
     if steps <= MAX_DRAWN_STEPS {
         for r in &record.robots {
-            flight(&mut out, &f, r, record.metrics.time.max(MIN_DURATION));
+            flight(&mut out, &f, r, record.metrics.totals.time.max(MIN_DURATION));
         }
     } else {
         let _ = writeln!(
@@ -98,7 +98,7 @@ pub fn roi_svg(roi: &GridRoi, mapped: Option<&[Cell]>, record: &GridRunRecord) -
         h - 6.0,
         record.robots.len(),
         record.cells,
-        record.metrics.time
+        record.metrics.totals.time
     );
     out.push_str("</svg>\n");
     out

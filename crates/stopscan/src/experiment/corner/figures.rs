@@ -1,7 +1,7 @@
 //! Figures 4, 6, 7 and 8 of the corner paper; Table 1 and Fig. 7 of the circle paper.
 
 use super::{LineupOptions, fig5, lineup, paper_setup, ratio_curve};
-use crate::experiment::{ExperimentError, Reproduction, Row};
+use crate::experiment::{ExperimentError, NamedChart, PolicyImage, Reproduction, Row};
 use crate::offline::corner::{expected, optimal::optimal_scans};
 use crate::protocol::corner::{AngleDistribution, CornerSetup, LastStep};
 use crate::render::{LineChart, Series};
@@ -66,13 +66,13 @@ pub(super) fn corner_policy_figure(id: &str) -> Result<Reproduction, ExperimentE
                     p.scan_stops
                 ));
             }
-            images.push((
-                format!("{id}-{}-{tag}", name.to_lowercase()),
-                format!(
+            images.push(PolicyImage {
+                stem: format!("{id}-{}-{tag}", name.to_lowercase()),
+                title: format!(
                     "{name} optimal policy, distribution {dist_no}, δ = 5°, {tag} probabilities"
                 ),
-                p.image,
-            ));
+                actions: p.image,
+            });
         }
     }
     Ok(Reproduction::new(
@@ -245,7 +245,7 @@ pub(super) fn corner_fig_7() -> Result<Reproduction, ExperimentError> {
             format!("with the printed MDP probabilities of Tables II–IV, POLICY2 equals POLICY1 for every τ ≥ {from_printed:.2} s"),
         ],
     )
-    .with_charts(vec![("corner-fig-7".into(), chart)]))
+    .with_charts(vec![NamedChart::new("corner-fig-7", chart)]))
 }
 
 /// A belief N(µ, 5°) on 5° buckets.
@@ -362,7 +362,7 @@ pub(super) fn corner_fig_8() -> Result<Reproduction, ExperimentError> {
         ));
         all_equal &= equal == below_85;
         shifted.push(format!("{what}: {equal} of {below_85}"));
-        charts.push((
+        charts.push(NamedChart::new(
             format!("corner-fig-8-{side}"),
             lineup_chart(
                 format!("Wrong beliefs: policies for N(µ, 5°), {what}"),
@@ -488,8 +488,8 @@ pub(super) fn circle_fig_7(seed: u64) -> Result<Reproduction, ExperimentError> {
     }
     let lb = |pts: &[(f64, f64)]| pts.iter().map(|&(d, _)| (d, 2.0)).collect::<Vec<_>>();
     let charts = vec![
-        (
-            "circle-fig-7-small".into(),
+        NamedChart::new(
+            "circle-fig-7-small",
             LineChart {
                 title: "Circle strategy: c(d) for small d".into(),
                 subtitle: "scan cost 1, speed 1; d = D/(vτ); 2000 distances in (0, 10]".into(),
@@ -501,8 +501,8 @@ pub(super) fn circle_fig_7(seed: u64) -> Result<Reproduction, ExperimentError> {
                 ],
             },
         ),
-        (
-            "circle-fig-7-large".into(),
+        NamedChart::new(
+            "circle-fig-7-large",
             LineChart {
                 title: "Circle strategy: c(d) for larger d".into(),
                 subtitle: "scan cost 1, speed 1; d = D/(vτ); 2000 distances in (0, 100]".into(),

@@ -12,6 +12,7 @@ mod tables;
 use rand::SeedableRng;
 use rand_chacha::ChaCha8Rng;
 use rayon::prelude::*;
+use serde::{Deserialize, Serialize};
 
 use super::{ExperimentError, MonteCarlo, Reproduction, sample_seed};
 use crate::offline::corner::{expected, worst_case};
@@ -306,13 +307,24 @@ pub fn ratio_curve(d_max: f64, n: usize) -> Result<Vec<(f64, f64)>, circle::Circ
         .collect()
 }
 
+/// One corner-paper strategy of the demo: its exact expected time and worst-case ratio.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct DemoStrategy {
+    /// Its name.
+    pub name: String,
+    /// Exact expected time, seconds.
+    pub expected_time: f64,
+    /// Worst-case ratio.
+    pub worst_ratio: f64,
+}
+
 /// What the built-in demo computes.
 #[derive(Debug, Clone, PartialEq)]
 pub struct Demo {
     /// The circle strategy at a few distances.
     pub circles: Vec<circle::CircleSolution>,
-    /// `(name, expected time, worst-case ratio)` of the four corner-paper strategies.
-    pub strategies: Vec<(String, f64, f64)>,
+    /// The four corner-paper strategies on the demo's belief.
+    pub strategies: Vec<DemoStrategy>,
     /// The `c(d)` chart.
     pub chart: LineChart,
 }
@@ -332,7 +344,8 @@ pub fn demo() -> Result<Demo, ExperimentError> {
     let mut four = Vec::new();
     for c in lineup(&setup, &belief, LineupOptions::default())? {
         let e = expected(&c.list, &setup, &belief).time;
-        four.push((c.name, e, worst_case(&c.list, &setup).worst_ratio));
+        let worst_ratio = worst_case(&c.list, &setup).worst_ratio;
+        four.push(DemoStrategy { name: c.name, expected_time: e, worst_ratio });
     }
     let chart = LineChart {
         title: "Circle strategy: competitive ratio c(d)".into(),

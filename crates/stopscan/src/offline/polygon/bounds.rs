@@ -66,10 +66,33 @@ pub struct LowerBounds {
     pub packing_points: Vec<Point>,
     /// The fractional packing behind `lp`, scaled to be valid: at every point of the plane,
     /// the weights of the witnesses seen from there sum to at most 1.
-    pub lp_weights: Vec<(Point, f64)>,
+    pub lp_weights: Vec<WeightedWitness>,
     /// Whether every stage finished within the time budget (the bounds are valid either way,
     /// only weaker when cut short).
     pub complete: bool,
+}
+
+/// A witness point and its weight in a fractional packing. Run records store it as the
+/// pair `[[x, y], weight]`.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+#[serde(from = "(Point, f64)", into = "(Point, f64)")]
+pub struct WeightedWitness {
+    /// The witness.
+    pub at: Point,
+    /// Its weight, in [0, 1].
+    pub weight: f64,
+}
+
+impl From<(Point, f64)> for WeightedWitness {
+    fn from((at, weight): (Point, f64)) -> Self {
+        Self { at, weight }
+    }
+}
+
+impl From<WeightedWitness> for (Point, f64) {
+    fn from(w: WeightedWitness) -> Self {
+        (w.at, w.weight)
+    }
 }
 
 impl LowerBounds {
@@ -123,7 +146,7 @@ pub fn lower_bounds(
     let (travel, travel_witness, travel_done) = travel(vis, start, &setup, deadline);
     let beat = packing.len().max(area.saturating_sub(1));
     let fractional = fractional_packing(&setup, &packing, beat, deadline);
-    let lp = fractional.as_ref().map(|f| f.iter().map(|w| w.1).sum::<f64>());
+    let lp = fractional.as_ref().map(|f| f.iter().map(|w| w.weight).sum::<f64>());
     let mut views = area;
     let mut views_rule = match range {
         Some(_) => format!("area / πR² = {area}"),
@@ -361,7 +384,7 @@ fn fractional_packing(
     packing: &[usize],
     beat: usize,
     deadline: Option<Instant>,
-) -> Option<Vec<(Point, f64)>> {
+) -> Option<Vec<WeightedWitness>> {
     if setup.witnesses.is_empty() || expired(deadline) {
         return None;
     }
@@ -386,7 +409,7 @@ fn fractional_packing(
             add(row(p), &mut rows);
         }
     }
-    let mut best: Option<(f64, Vec<(Point, f64)>)> = None;
+    let mut best: Option<(f64, Vec<WeightedWitness>)> = None;
     for _round in 0..LP_ROUNDS {
         if expired(deadline) {
             break;
@@ -403,7 +426,10 @@ fn fractional_packing(
         let scale = depth.max(1.0);
         let value = total / scale;
         if best.as_ref().is_none_or(|b| value > b.0) {
-            let weights = support.iter().map(|&i| (ws[i].at, y[i] / scale)).collect();
+            let weights = support
+                .iter()
+                .map(|&i| WeightedWitness { at: ws[i].at, weight: y[i] / scale })
+                .collect();
             best = Some((value, weights));
         }
         if depth <= 1.0 + LP_TOLERANCE {

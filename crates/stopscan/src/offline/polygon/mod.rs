@@ -34,7 +34,7 @@
 pub mod bounds;
 pub mod optimum;
 
-pub use bounds::{LowerBounds, lower_bounds};
+pub use bounds::{LowerBounds, WeightedWitness, lower_bounds};
 pub use optimum::{OptimumReport, OptimumStatus, Solver};
 
 use std::collections::HashMap;

@@ -24,16 +24,7 @@ pub struct DemoCircle {
     pub scan_points: Vec<[f64; 2]>,
 }
 
-/// One corner-paper strategy of the demo.
-#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
-pub struct DemoStrategy {
-    /// Its name.
-    pub name: String,
-    /// Exact expected time, seconds.
-    pub expected_time: f64,
-    /// Worst-case ratio.
-    pub worst_ratio: f64,
-}
+pub use exp::DemoStrategy;
 
 /// The demo's corner-paper setup and strategies.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
@@ -96,14 +87,7 @@ pub fn demo(dir: &Path) -> Result<DemoReport, CornerError> {
             delta: setup.delta(),
             belief: "mix:0.5*normal:30,3+0.5*normal:90,3 on 5° buckets (the corner paper's distribution 4)".into(),
             mdp_step_deg: LineupOptions::default().mdp_step.to_degrees(),
-            strategies: strategies
-                .into_iter()
-                .map(|(name, expected_time, worst_ratio)| DemoStrategy {
-                    name,
-                    expected_time,
-                    worst_ratio,
-                })
-                .collect(),
+            strategies,
         },
         files,
         stopscan_version: crate::VERSION.into(),
