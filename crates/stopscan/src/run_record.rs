@@ -17,6 +17,7 @@ use crate::protocol::grid::Cell;
 use crate::protocol::{CostModel, RunTotals};
 use crate::sim::grid::Mission;
 use crate::sim::polygon::PolygonRun;
+use crate::strategy::polygon::Skipped;
 use crate::world::grid::{Drift, GridWorld};
 use crate::world::polygon::PolygonWorld;
 
@@ -53,6 +54,67 @@ pub struct StrategyInfo {
 pub struct SensorInfo {
     /// Range limit R, or null.
     pub range: Option<f64>,
+    /// Beams per revolution (absent: continuous).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub beams: Option<u32>,
+    /// The smallest feature resolved, metres (absent: 0).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub min_feature: Option<f64>,
+    /// The shortest window worth a trip, metres (absent: every window counts).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub min_window: Option<f64>,
+    /// The window rule in words (absent: every window counts).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub window_rule: Option<String>,
+    /// Windows the rule closed without a visit, and their total length (absent: no rule).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub windows_below_rule: Option<usize>,
+    /// Their total length, metres.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub windows_below_rule_length: Option<f64>,
+}
+
+impl SensorInfo {
+    /// The sensor of a run and what its window rule closed.
+    pub fn of(sensor: &crate::protocol::polygon::Sensor, skipped: &Skipped) -> Self {
+        let rule = !sensor.excludes_nothing();
+        Self {
+            range: sensor.range,
+            beams: sensor.beams,
+            min_feature: (sensor.min_feature > 0.0).then_some(sensor.min_feature),
+            min_window: rule.then_some(sensor.min_window),
+            window_rule: rule.then(|| sensor.rule()),
+            windows_below_rule: rule.then_some(skipped.below_rule),
+            windows_below_rule_length: rule.then_some(skipped.below_rule_length),
+        }
+    }
+}
+
+/// `"robot"`: the footprint and where it can go (absent for a point robot).
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct RobotInfo {
+    /// The footprint.
+    pub footprint: crate::protocol::polygon::Footprint,
+    /// The clearance planned moves keep from what has not been seen free, metres.
+    pub clearance: f64,
+    /// How the configuration space was built.
+    pub configuration_space_rule: String,
+    /// The area of the configuration space's component at the start, m².
+    pub reachable_configuration_space_area: f64,
+    /// How many components the configuration space has (the others are out of reach).
+    pub configuration_space_components: usize,
+    /// The free area seen from the reachable configuration space, m²: the union of the
+    /// visibility regions from its vertices, its triangles' centroids and the run's scans
+    /// (a lower estimate of the area visible from anywhere the robot can be).
+    pub visible_from_reachable_area: f64,
+    /// `free_area − visible_from_reachable_area`, m²: space no reachable viewpoint was found
+    /// to see, reported apart and not counted as a failure (an upper estimate).
+    pub unreachable_area: f64,
+    /// `covered_area / visible_from_reachable_area`.
+    pub coverage_of_reachable: f64,
+    /// Window parts the strategy closed because no viewpoint with the clearance could be
+    /// planned for them from the view that saw them.
+    pub windows_out_of_reach: usize,
 }
 
 /// One scan in a robot's record.
@@ -169,6 +231,9 @@ pub struct RunRecord {
     pub cost_model: CostModel,
     /// The sensor.
     pub sensor: SensorInfo,
+    /// The robot's footprint and where it can go (absent for a point robot).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub robot: Option<RobotInfo>,
     /// One record per robot.
     pub robots: Vec<RobotRecord>,
     /// The metrics.
@@ -240,7 +305,11 @@ impl RunRecord {
             },
             strategy: StrategyInfo { name: strategy.into(), params: serde_json::json!({}) },
             cost_model: *cost,
-            sensor: SensorInfo { range: world.range() },
+            sensor: SensorInfo::of(
+                &crate::protocol::polygon::Sensor { range: world.range(), ..Default::default() },
+                &Skipped::default(),
+            ),
+            robot: None,
             robots: vec![RobotRecord {
                 id: 0,
                 path: run.path.clone(),

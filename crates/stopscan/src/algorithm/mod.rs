@@ -5,7 +5,8 @@
 //! - [`visibility`]: visibility regions by triangular expansion, full or range-limited, and an
 //!   independent sweep that checks them;
 //! - [`cover`]: which parts of a segment have a polygon beyond them (the exact window test);
-//! - [`region`]: union, difference, intersection and area of polygons (i_overlay), and the
+//! - [`region`]: union, difference, intersection and area of polygons (i_overlay), a
+//!   footprint's configuration space (a Minkowski sum through the overlay), and the
 //!   clipping of a ring to a box;
 //! - [`shortest_path`]: shortest paths in the free space (bitangent graph of the reflex vertices,
 //!   A*);

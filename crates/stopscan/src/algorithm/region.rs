@@ -120,6 +120,73 @@ impl Region {
     }
 }
 
+/// The configuration space of a convex footprint in a domain: the reference points `x` at
+/// which the robot `x + F` lies in the closed free space. `footprint` is a convex polygon
+/// around the reference point `[0, 0]`.
+///
+/// The robot at `x` meets a boundary edge `e` exactly when `x ∈ e ⊕ (−F)`, the convex hull of
+/// the edge's ends minus the footprint's vertices; a whole obstacle inside the robot would
+/// meet its edges too. So the configuration space is the free space less the union of one
+/// convex hull per boundary edge (a Minkowski sum of the obstacles with the reflected
+/// footprint). The hulls are grown by `margin` (metres, on top of the overlay's own
+/// snapping), so that the result lies inside the exact configuration space.
+///
+/// # Complexity
+/// One overlay of n hulls of at most 2k vertices, for n domain edges and a k-gon footprint.
+pub fn configuration_space(domain: &Domain, footprint: &[Point], margin: f64) -> Region {
+    let grown: Vec<Point> = footprint
+        .iter()
+        .map(|p| {
+            let r = p[0].hypot(p[1]);
+            let f = if r > 0.0 { (r + margin) / r } else { 1.0 };
+            [-p[0] * f, -p[1] * f]
+        })
+        .collect();
+    let mut hulls = Vec::new();
+    for ring in domain.rings() {
+        for i in 0..ring.len() {
+            let (a, b) = (ring[i], ring[(i + 1) % ring.len()]);
+            let pts: Vec<Point> = grown
+                .iter()
+                .flat_map(|f| [[a[0] + f[0], a[1] + f[1]], [b[0] + f[0], b[1] + f[1]]])
+                .collect();
+            hulls.push(convex_hull(pts));
+        }
+    }
+    Region::of_domain(domain).difference(&Region::overlay_all(&hulls))
+}
+
+/// The convex hull (counter-clockwise, Andrew's monotone chain with exact orientation).
+fn convex_hull(mut pts: Vec<Point>) -> Vec<Point> {
+    pts.sort_by(|a, b| a[0].total_cmp(&b[0]).then(a[1].total_cmp(&b[1])));
+    pts.dedup();
+    if pts.len() < 3 {
+        return pts;
+    }
+    let mut lower: Vec<Point> = Vec::new();
+    for &p in &pts {
+        while lower.len() >= 2
+            && crate::kernel::orient_sign(lower[lower.len() - 2], lower[lower.len() - 1], p) <= 0
+        {
+            lower.pop();
+        }
+        lower.push(p);
+    }
+    let mut upper: Vec<Point> = Vec::new();
+    for &p in pts.iter().rev() {
+        while upper.len() >= 2
+            && crate::kernel::orient_sign(upper[upper.len() - 2], upper[upper.len() - 1], p) <= 0
+        {
+            upper.pop();
+        }
+        upper.push(p);
+    }
+    lower.pop();
+    upper.pop();
+    lower.extend(upper);
+    lower
+}
+
 /// Sutherland–Hodgman clipping of a ring against an axis-aligned box `[x0, y0, x1, y1]`:
 /// the part of the ring's polygon inside the box, as one ring (empty, or fewer than three
 /// points, when nothing is left). The result of a non-convex ring may have zero-width
@@ -188,6 +255,45 @@ mod tests {
             Region::polygon(&sq(0.0, 0.0, 2.0)).intersection(&Region::polygon(&sq(1.0, 1.0, 2.0)));
         assert!((i.area() - 1.0).abs() < 1e-9);
         assert!(Region::union_all(&[]).is_empty());
+    }
+
+    #[test]
+    fn the_configuration_space_of_a_square_robot_in_a_room() {
+        // A 10 × 6 room with a 2 × 2 pillar; a robot of half-width 0.5 (a square).
+        let room = Domain::new(
+            vec![[0.0, 0.0], [10.0, 0.0], [10.0, 6.0], [0.0, 6.0]],
+            vec![vec![[4.0, 2.0], [4.0, 4.0], [6.0, 4.0], [6.0, 2.0]]],
+        )
+        .unwrap();
+        let f = sq(-0.5, -0.5, 1.0);
+        let c = configuration_space(&room, &f, 0.0);
+        // The room shrinks to 9 × 5, the pillar grows to 3 × 3 (square corners stay square).
+        assert!((c.area() - (45.0 - 9.0)).abs() < 1e-6, "{}", c.area());
+        assert_eq!(c.shapes.len(), 1);
+        assert_eq!(c.shapes[0].len(), 2);
+        // A corridor narrower than the robot disappears from it.
+        let corridor = Domain::new(
+            vec![
+                [0.0, 0.0],
+                [4.0, 0.0],
+                [4.0, 4.0],
+                [6.0, 4.0],
+                [6.0, 4.8],
+                [4.0, 4.8],
+                [4.0, 8.0],
+                [0.0, 8.0],
+            ],
+            vec![],
+        )
+        .unwrap();
+        let c = configuration_space(&corridor, &f, 0.0);
+        assert!((c.area() - 3.0 * 7.0).abs() < 1e-6, "{}", c.area());
+    }
+
+    #[test]
+    fn hulls_are_convex_and_counter_clockwise() {
+        let h = convex_hull(vec![[0.0, 0.0], [2.0, 0.0], [1.0, 0.5], [2.0, 2.0], [0.0, 2.0]]);
+        assert_eq!(h, vec![[0.0, 0.0], [2.0, 0.0], [2.0, 2.0], [0.0, 2.0]]);
     }
 
     #[test]

@@ -3,7 +3,7 @@
 //! - `domain`: [`Domain`], validated once ([`InvalidEnvironment`]), and where a point lies
 //!   ([`Location`]);
 //! - `frame`: [`Frame`], the exact shift between the input's coordinates and the local frame;
-//! - here: [`signed_area_of`] and [`segment_distance`].
+//! - here: [`signed_area_of`], [`segment_distance`] and [`segments_distance`].
 
 mod domain;
 mod frame;
@@ -22,6 +22,18 @@ pub fn segment_distance(p: Point, a: Point, b: Point) -> f64 {
         0.0
     };
     (p[0] - a[0] - t * dx).hypot(p[1] - a[1] - t * dy)
+}
+
+/// The distance between the closed segments `a b` and `c d`: 0 when they meet (exact test),
+/// else the least of the four end-to-segment distances (floating point).
+pub fn segments_distance(a: Point, b: Point, c: Point, d: Point) -> f64 {
+    if crate::kernel::segments_intersect(a, b, c, d) {
+        return 0.0;
+    }
+    segment_distance(a, c, d)
+        .min(segment_distance(b, c, d))
+        .min(segment_distance(c, a, b))
+        .min(segment_distance(d, a, b))
 }
 
 /// Signed area of a ring (positive when counter-clockwise).

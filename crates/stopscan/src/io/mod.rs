@@ -76,6 +76,8 @@ pub struct Environment {
     /// Visibility query points carried by the file (the benchmark format's `QUERIES`
     /// section), in the local frame.
     pub queries: Vec<crate::kernel::Point>,
+    /// The cell size of the occupancy map the domain was traced from (metres), if it was.
+    pub cell_size: Option<f64>,
     /// The file's frame: `input = local + frame.origin`. Points the user gives are moved into
     /// the local frame with [`Frame::to_local`], and results back with [`Frame::to_input`].
     pub frame: Frame,
@@ -84,7 +86,7 @@ pub struct Environment {
 impl Environment {
     /// An environment in its input's own frame, with no start and no query points.
     pub fn new(domain: crate::geometry::Domain) -> Self {
-        Self { domain, start: None, queries: Vec::new(), frame: Frame::IDENTITY }
+        Self { domain, start: None, queries: Vec::new(), cell_size: None, frame: Frame::IDENTITY }
     }
 
     /// The same environment with this start.
@@ -127,7 +129,7 @@ impl Environment {
         let domain = crate::geometry::Domain::new(outer, rings)?;
         let queries = self.queries.iter().map(|&q| frame.to_local(q)).collect();
         let start = self.start.map(|s| frame.to_local(s));
-        Ok(Self { domain, start, queries, frame })
+        Ok(Self { domain, start, queries, frame, ..self })
     }
 }
 

@@ -300,7 +300,7 @@ pub fn read(path: &Path, opts: &RosMapOptions) -> Result<Environment, LoadError>
     };
     let rings = trace(&region, w, h, y.resolution);
     let domain = simplify_until_valid(path, &rings, y.resolution)?;
-    Ok(Environment { domain, start, queries: Vec::new(), frame })
+    Ok(Environment { domain, start, queries: Vec::new(), cell_size: Some(y.resolution), frame })
 }
 
 /// The 4-connected free component containing `seed`, or the largest.

@@ -22,3 +22,276 @@ impl PolygonObservation {
         Self { at: f(self.at), region: self.region.mapped(f) }
     }
 }
+
+/// The robot's footprint around its reference point (the point that moves along the path and
+/// where scans are taken), in the robot's frame. The polygon paper models a point robot and
+/// leaves a convex robot open; stopscan plans in the configuration space of a footprint
+/// without rotation (a disc, or a convex polygon kept at a fixed heading).
+#[derive(Debug, Clone, Default, PartialEq, Serialize, Deserialize)]
+#[serde(tag = "kind", rename_all = "snake_case")]
+pub enum Footprint {
+    /// A point robot: the paper's model.
+    #[default]
+    Point,
+    /// A disc of this radius, metres, centred on the reference point.
+    Disc {
+        /// Radius, metres.
+        radius: f64,
+    },
+    /// A convex polygon (counter-clockwise) containing the reference point, metres.
+    Convex {
+        /// The vertices.
+        vertices: Vec<Point>,
+    },
+}
+
+/// Sides of the regular polygon that stands for a disc footprint. It circumscribes the disc,
+/// so the configuration space it gives lies inside the disc's (conservative by at most
+/// `radius · (1/cos(π/32) − 1)`, 0.5% of the radius).
+pub const DISC_SIDES: usize = 32;
+
+/// The slack of [`Footprint::planning_clearance`], relative to the coordinates' magnitude.
+pub const CLEARANCE_SLACK_REL: f64 = 1e-6;
+
+/// Why a footprint was refused.
+#[derive(Debug, Clone, PartialEq, thiserror::Error)]
+pub enum InvalidFootprint {
+    /// A radius that is negative or not finite.
+    #[error("the robot radius must be a finite number >= 0, got {0}")]
+    Radius(f64),
+    /// A polygon with too few vertices, a coordinate that is not finite, a reflex or
+    /// collinear corner, or the reference point outside.
+    #[error("the footprint polygon {0}")]
+    Polygon(String),
+}
+
+impl Footprint {
+    /// A disc of `radius` metres (`Point` for 0).
+    ///
+    /// # Errors
+    /// [`InvalidFootprint::Radius`] for a negative or non-finite radius.
+    pub fn disc(radius: f64) -> Result<Self, InvalidFootprint> {
+        if !radius.is_finite() || radius < 0.0 {
+            return Err(InvalidFootprint::Radius(radius));
+        }
+        Ok(if radius == 0.0 { Self::Point } else { Self::Disc { radius } })
+    }
+
+    /// A convex polygon footprint (either orientation; stored counter-clockwise).
+    ///
+    /// # Errors
+    /// [`InvalidFootprint::Polygon`] unless the vertices are at least three finite points
+    /// forming a strictly convex polygon that contains the reference point `[0, 0]`
+    /// (inside or on its boundary).
+    pub fn convex(mut vertices: Vec<Point>) -> Result<Self, InvalidFootprint> {
+        let bad = |m: String| Err(InvalidFootprint::Polygon(m));
+        if vertices.len() < 3 {
+            return bad(format!("needs at least 3 vertices, got {}", vertices.len()));
+        }
+        if let Some(i) = vertices.iter().position(|p| !p[0].is_finite() || !p[1].is_finite()) {
+            return bad(format!("vertex {i} is not a finite point: {:?}", vertices[i]));
+        }
+        if crate::geometry::signed_area_of(&vertices) < 0.0 {
+            vertices.reverse();
+        }
+        let n = vertices.len();
+        for i in 0..n {
+            let (a, b, c) = (vertices[i], vertices[(i + 1) % n], vertices[(i + 2) % n]);
+            if crate::kernel::orient_sign(a, b, c) <= 0 {
+                return bad(format!(
+                    "is not strictly convex at vertex {b:?} (reflex, collinear or repeated)"
+                ));
+            }
+        }
+        if crate::kernel::ring_side(&vertices, [0.0, 0.0]) == crate::kernel::RingSide::Outside {
+            return bad("does not contain the robot's reference point [0, 0]".into());
+        }
+        Ok(Self::Convex { vertices })
+    }
+
+    /// Whether the robot is a point.
+    pub fn is_point(&self) -> bool {
+        matches!(self, Self::Point)
+    }
+
+    /// The convex polygon the configuration space is built from: `None` for a point, the
+    /// regular [`DISC_SIDES`]-gon circumscribing a disc, the polygon itself otherwise.
+    pub fn polygon(&self) -> Option<Vec<Point>> {
+        match self {
+            Self::Point => None,
+            Self::Disc { radius } => {
+                let k = DISC_SIDES as f64;
+                let r = radius / (std::f64::consts::PI / k).cos();
+                Some(
+                    (0..DISC_SIDES)
+                        .map(|i| {
+                            let a = std::f64::consts::TAU * (i as f64 + 0.5) / k;
+                            [r * a.cos(), r * a.sin()]
+                        })
+                        .collect(),
+                )
+            }
+            Self::Convex { vertices } => Some(vertices.clone()),
+        }
+    }
+
+    /// The clearance strategies keep from everything they have not seen to be free: the
+    /// largest distance from the reference point to the [`polygon`](Self::polygon) (0 for a
+    /// point). A disc of this radius contains the footprint at every heading.
+    pub fn clearance(&self) -> f64 {
+        self.polygon().map_or(0.0, |p| p.iter().map(|v| v[0].hypot(v[1])).fold(0.0, f64::max))
+    }
+
+    /// The clearance a planner keeps, with a slack of [`CLEARANCE_SLACK_REL`] of `scale` (the
+    /// magnitude of the coordinates, at least 1) over [`clearance`](Self::clearance): the
+    /// configuration space is built by an overlay that snaps to about 5e-10 of its extent,
+    /// and a plan that keeps this much lies inside it. 0 for a point.
+    pub fn planning_clearance(&self, scale: f64) -> f64 {
+        if self.is_point() { 0.0 } else { self.clearance() + CLEARANCE_SLACK_REL * scale.max(1.0) }
+    }
+
+    /// The robot's width: the narrowest gap it can pass (the disc's diameter; a polygon's
+    /// minimum width over directions).
+    pub fn width(&self) -> f64 {
+        match self {
+            Self::Point => 0.0,
+            Self::Disc { radius } => 2.0 * radius,
+            Self::Convex { vertices } => {
+                let n = vertices.len();
+                (0..n)
+                    .map(|i| {
+                        let (a, b) = (vertices[i], vertices[(i + 1) % n]);
+                        let len = (b[0] - a[0]).hypot(b[1] - a[1]);
+                        vertices
+                            .iter()
+                            .map(|p| {
+                                ((b[0] - a[0]) * (p[1] - a[1]) - (b[1] - a[1]) * (p[0] - a[0]))
+                                    .abs()
+                                    / len
+                            })
+                            .fold(0.0, f64::max)
+                    })
+                    .fold(f64::INFINITY, f64::min)
+            }
+        }
+    }
+}
+
+/// The sensor a strategy plans with, and its rule for windows worth a trip.
+///
+/// A real scanner resolves an opening only if it spans several beams: at distance `d` two
+/// neighbouring beams of a scanner with `beams` per revolution are `d · 2π / beams` apart.
+/// A window is **worth a trip** when its length is at least
+/// `max(min_window, min_feature, d · 2π / beams)`, where `d` is the distance from the
+/// viewpoint to the window's near end. Shorter windows (pixel steps of an occupancy map's
+/// walls, gaps narrower than the robot) are closed without a visit and counted in the run
+/// record as excluded by the rule. With the defaults (no beam count, zero sizes) every window
+/// counts: the paper's model.
+#[derive(Debug, Clone, Copy, Default, PartialEq, Serialize, Deserialize)]
+pub struct Sensor {
+    /// The range, metres (`None`: unlimited).
+    pub range: Option<f64>,
+    /// Beams per revolution (`None`: continuous).
+    pub beams: Option<u32>,
+    /// The smallest feature the scanner resolves at any distance, metres.
+    pub min_feature: f64,
+    /// The shortest window worth a trip, metres (`--min-window`).
+    pub min_window: f64,
+}
+
+impl Sensor {
+    /// The shortest window worth a trip whose near end is `distance` metres away.
+    pub fn min_window_at(&self, distance: f64) -> f64 {
+        let beam = self.beams.map_or(0.0, |b| distance * std::f64::consts::TAU / f64::from(b));
+        self.min_window.max(self.min_feature).max(beam)
+    }
+
+    /// Whether the rule excludes nothing (every window is worth a trip).
+    pub fn excludes_nothing(&self) -> bool {
+        self.beams.is_none() && self.min_window <= 0.0 && self.min_feature <= 0.0
+    }
+
+    /// The rule in words, for run records.
+    pub fn rule(&self) -> String {
+        if self.excludes_nothing() {
+            return "every window is worth a trip".into();
+        }
+        let mut terms = vec![format!("{} m (min_window)", self.min_window)];
+        if self.min_feature > 0.0 {
+            terms.push(format!("{} m (min_feature)", self.min_feature));
+        }
+        if let Some(b) = self.beams {
+            terms.push(format!("d·2π/{b} (beam spacing at the window's distance d)"));
+        }
+        format!("a window is worth a trip when its length is at least max({})", terms.join(", "))
+    }
+}
+
+/// What a polygon strategy knows before it starts: the cost model that prices its choices,
+/// the robot's footprint and its sensor.
+#[derive(Debug, Clone, Default, PartialEq, Serialize, Deserialize)]
+pub struct RobotSetup {
+    /// The cost model.
+    pub cost: crate::protocol::CostModel,
+    /// The footprint.
+    pub footprint: Footprint,
+    /// The sensor and its window rule.
+    pub sensor: Sensor,
+}
+
+impl RobotSetup {
+    /// A point robot with an ideal sensor (the paper's model), priced by `cost`.
+    pub fn point(cost: crate::protocol::CostModel) -> Self {
+        Self { cost, ..Self::default() }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn footprints_validate_and_measure() {
+        assert_eq!(Footprint::disc(0.0).unwrap(), Footprint::Point);
+        assert!(Footprint::disc(-1.0).is_err() && Footprint::disc(f64::NAN).is_err());
+        let d = Footprint::disc(0.2).unwrap();
+        assert_eq!(d.width(), 0.4);
+        // The circumscribed 32-gon: its vertices at r / cos(π/32), its edges' middles at r.
+        let p = d.polygon().unwrap();
+        assert_eq!(p.len(), DISC_SIDES);
+        let c = d.clearance();
+        assert!((c - 0.2 / (std::f64::consts::PI / 32.0).cos()).abs() < 1e-15);
+        for i in 0..p.len() {
+            let (a, b) = (p[i], p[(i + 1) % p.len()]);
+            let m = [f64::midpoint(a[0], b[0]), f64::midpoint(a[1], b[1])];
+            assert!((m[0].hypot(m[1]) - 0.2).abs() < 1e-12);
+        }
+        // A 0.6 × 0.4 rectangle, given clockwise: stored counter-clockwise, width 0.4.
+        let r =
+            Footprint::convex(vec![[0.3, 0.2], [0.3, -0.2], [-0.3, -0.2], [-0.3, 0.2]]).unwrap();
+        assert!((r.width() - 0.4).abs() < 1e-12);
+        assert!((r.clearance() - 0.3f64.hypot(0.2)).abs() < 1e-15);
+        let Footprint::Convex { vertices } = &r else { panic!() };
+        assert!(crate::geometry::signed_area_of(vertices) > 0.0);
+        for bad in [
+            vec![[0.0, 0.0], [1.0, 0.0]],
+            vec![[1.0, 1.0], [2.0, 1.0], [1.0, 2.0]],
+            vec![[-1.0, -1.0], [1.0, -1.0], [0.0, 0.0], [1.0, 1.0], [-1.0, 1.0]],
+            vec![[-1.0, -1.0], [f64::NAN, -1.0], [0.0, 1.0]],
+        ] {
+            assert!(Footprint::convex(bad.clone()).is_err(), "{bad:?}");
+        }
+    }
+
+    #[test]
+    fn the_window_rule_follows_its_terms() {
+        let s = Sensor::default();
+        assert!(s.excludes_nothing());
+        assert_eq!(s.min_window_at(100.0), 0.0);
+        let s = Sensor { beams: Some(360), min_window: 0.1, ..Sensor::default() };
+        assert_eq!(s.min_window_at(1.0), 0.1);
+        let at_20 = 20.0 * std::f64::consts::TAU / 360.0;
+        assert!((s.min_window_at(20.0) - at_20).abs() < 1e-15);
+        assert!(s.rule().contains("d·2π/360"));
+    }
+}

@@ -13,6 +13,8 @@
 //! - [`greedy`]: a valid viewpoint set, as an upper *reference* (not a bound): from the start,
 //!   repeatedly add the candidate seen from a chosen one that sees the most area not yet
 //!   covered;
+//! - [`reach`]: what a robot with a footprint can see at all (the free space seen from its
+//!   reachable configuration space), for the unreachable area beside its runs;
 //! - [`optimum`](mod@optimum): the exact minimum over the same candidates by integer
 //!   programming, within a time budget (the best set found and the best proven lower bound
 //!   when it runs out).
@@ -33,6 +35,7 @@
 
 pub mod bounds;
 pub mod optimum;
+pub mod reach;
 
 pub use bounds::{LowerBounds, WeightedWitness, lower_bounds};
 pub use optimum::{OptimumReport, OptimumStatus, Solver};

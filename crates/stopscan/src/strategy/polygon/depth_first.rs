@@ -22,6 +22,7 @@ use super::known::{self, Known, Placement};
 use super::{PolygonFeedback, PolygonStrategy};
 use crate::kernel::Point;
 use crate::protocol::Action;
+use crate::protocol::polygon::RobotSetup;
 
 /// The depth-first exploration of the paper. Its whole state is serialisable.
 ///
@@ -63,6 +64,13 @@ impl DepthFirst {
     /// A fresh strategy.
     pub fn new() -> Self {
         Self::default()
+    }
+
+    /// A fresh strategy for a robot with a footprint and a sensor rule
+    /// ([`RobotSetup`]): the paper's algorithm, with every viewpoint moved off its window far
+    /// enough for the footprint and short windows closed by the rule.
+    pub fn for_robot(setup: &RobotSetup) -> Self {
+        Self { known: Known::for_robot(setup), ..Self::default() }
     }
 
     /// A fresh strategy that places each viewpoint by `placement` on its window.

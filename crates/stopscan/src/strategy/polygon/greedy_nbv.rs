@@ -18,6 +18,7 @@ use serde::{Deserialize, Serialize};
 use super::known::{self, Known, Target};
 use super::{PolygonFeedback, PolygonStrategy};
 use crate::kernel::Point;
+use crate::protocol::polygon::RobotSetup;
 use crate::protocol::{Action, CostModel};
 
 /// Greedy next-best-view. Its whole state is serialisable.
@@ -31,6 +32,12 @@ impl GreedyNbv {
     /// A fresh strategy that prices candidates with `cost`.
     pub fn new(cost: CostModel) -> Self {
         Self { cost, known: Known::default() }
+    }
+
+    /// A fresh strategy for a robot with a footprint and a sensor rule ([`RobotSetup`]),
+    /// pricing with its cost model.
+    pub fn for_robot(setup: &RobotSetup) -> Self {
+        Self { cost: setup.cost, known: Known::for_robot(setup) }
     }
 
     /// After the scan that became view `cur`: the candidate with the most predicted area per

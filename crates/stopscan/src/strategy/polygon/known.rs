@@ -6,11 +6,12 @@ use serde::{Deserialize, Serialize};
 
 use crate::algorithm::cover::{self, Intervals};
 use crate::algorithm::visibility::BoundaryPiece;
+use crate::geometry::segments_distance;
 use crate::kernel::{
     Point, RingSide, magnitude, on_segment, orient_sign, ring_side, rounding, segments_intersect,
 };
 use crate::protocol::Action;
-use crate::protocol::polygon::PolygonObservation;
+use crate::protocol::polygon::{Footprint, PolygonObservation, RobotSetup, Sensor};
 
 use super::PolygonFeedback;
 
@@ -84,6 +85,17 @@ pub(super) struct Known {
     /// Where on an unexplored window part the next viewpoint goes.
     #[serde(default)]
     pub(super) placement: Placement,
+    /// The robot's footprint: with one, every planned move keeps its planning clearance from
+    /// the boundary (walls and windows) of the view it is planned in, so the robot only
+    /// drives where it has seen free space around it.
+    #[serde(default)]
+    footprint: Footprint,
+    /// The sensor's rule for windows worth a trip.
+    #[serde(default)]
+    sensor: Sensor,
+    /// What the rule and the footprint left unvisited.
+    #[serde(default)]
+    pub(super) skipped: Skipped,
     pub(super) views: Vec<View>,
     /// The window part the next scan is for.
     pending: Option<Target>,
@@ -91,7 +103,27 @@ pub(super) struct Known {
     route: Vec<Point>,
 }
 
+/// Windows closed without a visit, and why.
+#[derive(Debug, Clone, Copy, Default, PartialEq, Serialize, Deserialize)]
+pub struct Skipped {
+    /// Windows shorter than the sensor rule's minimum ([`Sensor::min_window_at`]).
+    pub below_rule: usize,
+    /// Their total length, metres.
+    pub below_rule_length: f64,
+    /// Window parts no viewpoint with the footprint's clearance could be planned for from the
+    /// view that saw them.
+    pub out_of_reach: usize,
+}
+
 impl View {
+    /// Whether the robot, driving straight from the viewpoint to `z`, stays at least `c` from
+    /// the region's boundary (walls and windows alike: beyond a window nothing is known).
+    fn clear(&self, z: Point, c: f64) -> bool {
+        let n = self.polygon.len();
+        (0..n)
+            .all(|i| segments_distance(self.at, z, self.polygon[i], self.polygon[(i + 1) % n]) >= c)
+    }
+
     /// Whether the straight move from the viewpoint to `z` stays strictly inside the region
     /// after leaving the viewpoint, `(at, z]` (exact tests against its boundary, whose reflex
     /// vertices are exact input points). The viewpoint itself may lie on the boundary (a start
@@ -117,6 +149,16 @@ impl View {
 }
 
 impl Known {
+    /// What a strategy knows before its first scan: the robot's footprint and sensor.
+    pub(super) fn for_robot(setup: &RobotSetup) -> Self {
+        Self { footprint: setup.footprint.clone(), sensor: setup.sensor, ..Self::default() }
+    }
+
+    /// The clearance planned moves keep near view `v` (0 for a point robot).
+    fn clearance(&self, v: usize) -> f64 {
+        self.footprint.planning_clearance(magnitude(&self.views[v].polygon))
+    }
+
     /// Records a scan, taken at the pending target (inside its view's region, which becomes
     /// the new view's parent in the tree of moves); the target counts as handled.
     pub(super) fn add(&mut self, obs: &PolygonObservation) -> usize {
@@ -126,6 +168,8 @@ impl Known {
         if let Some(t) = pending.filter(|t| !t.off_gap) {
             self.handled(t);
         }
+        let (sensor, at) = (self.sensor, obs.at);
+        let skipped = &mut self.skipped;
         let windows = obs
             .region
             .boundary
@@ -134,15 +178,19 @@ impl Known {
             .filter_map(|(piece, b)| match *b {
                 BoundaryPiece::Window { from, to, .. } | BoundaryPiece::Frontier { from, to } => {
                     let tol = cover::tolerance(obs.at, b);
-                    Some(Window {
-                        piece,
-                        from,
-                        to,
-                        tol,
-                        covered: Vec::new(),
-                        checked: 0,
-                        no_junction: false,
-                    })
+                    let mut covered = Vec::new();
+                    // The sensor rule closes short windows (not range frontiers: a range's
+                    // arc comes as many short chords).
+                    if matches!(b, BoundaryPiece::Window { .. }) && !sensor.excludes_nothing() {
+                        let d = |p: Point| (p[0] - at[0]).hypot(p[1] - at[1]);
+                        let len = (to[0] - from[0]).hypot(to[1] - from[1]);
+                        if len < sensor.min_window_at(d(from).min(d(to))) {
+                            skipped.below_rule += 1;
+                            skipped.below_rule_length += len;
+                            covered.push([0.0, 1.0]);
+                        }
+                    }
+                    Some(Window { piece, from, to, tol, covered, checked: 0, no_junction: false })
                 }
                 _ => None,
             })
@@ -217,6 +265,16 @@ impl Known {
                     if d(to) >= d(from) { gap[1] - inset } else { gap[0] + inset }
                 }
             };
+            let target = Target { at: self.views[view].at, view, window: k, gap, off_gap: false };
+            let c = self.clearance(view);
+            if c > 0.0 {
+                if let Some(at) = self.clear_point(view, from, to, gap, c) {
+                    return Some((Target { at, ..target }, open));
+                }
+                self.skipped.out_of_reach += 1;
+                self.handled(target);
+                continue;
+            }
             let x = [from[0] + tm * dx, from[1] + tm * dy];
             // Windows are radial, so the step goes sideways into the region (left of the
             // window, which runs counter-clockwise around it), not toward the viewpoint: a move
@@ -228,7 +286,6 @@ impl Known {
                 .map(|e: f64| e.max(floor))
                 .map(|e| [x[0] - e * dy, x[1] + e * dx])
                 .find(|&z| v.reaches(z));
-            let target = Target { at: v.at, view, window: k, gap, off_gap: false };
             if let Some(at) = found {
                 return Some((Target { at, ..target }, open));
             }
@@ -237,6 +294,38 @@ impl Known {
             // after a scan for it, so that every scan makes progress.
             self.handled(target);
         }
+    }
+
+    /// A viewpoint for the part `gap` of the window `from`–`to` of `view` that a robot with
+    /// clearance `c` can drive to straight from the view's viewpoint: points of the part (its
+    /// middle first, then quarters and eighths) stepped `c` and more off the window into the
+    /// region, the first whose move keeps `c` from the region's boundary. From there the
+    /// robot looks through the window from a step back; what it cannot see from there is
+    /// left behind the new view's own windows.
+    fn clear_point(
+        &self,
+        view: usize,
+        from: Point,
+        to: Point,
+        gap: [f64; 2],
+        c: f64,
+    ) -> Option<Point> {
+        let v = &self.views[view];
+        let (dx, dy) = (to[0] - from[0], to[1] - from[1]);
+        let len = dx.hypot(dy);
+        if len == 0.0 {
+            return None;
+        }
+        // The unit normal into the region (left of the window).
+        let n = [-dy / len, dx / len];
+        [0.5, 0.25, 0.75, 0.125, 0.375, 0.625, 0.875].into_iter().find_map(|f| {
+            let t = gap[0] + f * (gap[1] - gap[0]);
+            let x = [from[0] + t * dx, from[1] + t * dy];
+            [1.0, 1.5, 2.5, 4.0]
+                .into_iter()
+                .map(|k| [x[0] + k * c * n[0], x[1] + k * c * n[1]])
+                .find(|&z| v.reaches(z) && v.clear(z, c))
+        })
     }
 
     /// The index among `view`'s windows of the window that is its piece `piece`, if it is one
@@ -264,11 +353,12 @@ impl Known {
         let (dx, dy) = (v.at[0] - point[0], v.at[1] - point[1]);
         let d = dx.hypot(dy);
         let floor = 4.0 * v.rounding / d;
+        let c = self.clearance(view);
         let at = [1e-6, 1e-4, 1e-2]
             .into_iter()
             .map(|l: f64| l.max(floor))
             .map(|l| [point[0] + l * (dx + d * inward[0]), point[1] + l * (dy + d * inward[1])])
-            .find(|&z| v.reaches(z))
+            .find(|&z| v.reaches(z) && (c == 0.0 || v.clear(z, c)))
             .unwrap_or(t.at);
         Some(Target { at, off_gap: true, ..t })
     }

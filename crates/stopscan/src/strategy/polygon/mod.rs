@@ -18,48 +18,48 @@ mod range_limited;
 
 pub use depth_first::DepthFirst;
 pub use greedy_nbv::GreedyNbv;
-pub use known::Placement;
+pub use known::{Placement, Skipped};
 pub use nearest_frontier::NearestFrontier;
 pub use range_limited::RangeLimited;
 
 use super::{Entry, Registry, UnknownStrategy};
 use crate::kernel::Point;
-use crate::protocol::polygon::PolygonObservation;
+use crate::protocol::polygon::{PolygonObservation, RobotSetup};
 use crate::protocol::{Action, CostModel, Feedback};
 
 /// What the driver tells a polygon strategy before asking for its next action.
 pub type PolygonFeedback = Feedback<Point, PolygonObservation>;
 
-/// How a polygon registry entry builds its strategy: fresh, for a run priced by `cost`
-/// (strategies that price their choices use it).
-pub type PolygonBuild = fn(cost: &CostModel) -> Box<dyn PolygonStrategy + Send>;
+/// How a polygon registry entry builds its strategy: fresh, for a robot and a run priced by
+/// its cost model (strategies that price their choices use it).
+pub type PolygonBuild = fn(setup: &RobotSetup) -> Box<dyn PolygonStrategy + Send>;
 
 /// Every polygon strategy, in display order: names, help text and construction.
 pub const REGISTRY: Registry<PolygonBuild> = Registry::new(&[
     Entry {
         name: "depth_first",
         summary: "the paper's algorithm: depth-first over windows, at most r + 1 scans",
-        build: |_| Box::new(DepthFirst::new()),
+        build: |s| Box::new(DepthFirst::for_robot(s)),
     },
     Entry {
         name: "nearest_frontier",
         summary: "frontier-based (Yamauchi): the nearest unexplored window by travel",
-        build: |_| Box::new(NearestFrontier::new()),
+        build: |s| Box::new(NearestFrontier::for_robot(s)),
     },
     Entry {
         name: "greedy_nbv",
         summary: "greedy next-best-view: most predicted new area per second of cost",
-        build: |cost| Box::new(GreedyNbv::new(*cost)),
+        build: |s| Box::new(GreedyNbv::for_robot(s)),
     },
     Entry {
         name: "range_limited",
         summary: "the paper's algorithm for a sensor range (needs one): open space, then boundary following",
-        build: |_| Box::new(RangeLimited::new()),
+        build: |s| Box::new(RangeLimited::for_robot(s)),
     },
 ]);
 
-/// A fresh strategy by registry name; `cost` is the cost model of the run (strategies that
-/// price their choices use it).
+/// A fresh strategy by registry name, for a point robot with an ideal sensor (the paper's
+/// model); `cost` is the cost model of the run (strategies that price their choices use it).
 ///
 /// # Errors
 /// [`UnknownStrategy`] listing the registered names.
@@ -67,7 +67,19 @@ pub fn build(
     name: &str,
     cost: &CostModel,
 ) -> Result<Box<dyn PolygonStrategy + Send>, UnknownStrategy> {
-    REGISTRY.get(name).map(|e| (e.build)(cost))
+    build_for(name, &RobotSetup::point(*cost))
+}
+
+/// A fresh strategy by registry name for a robot with a footprint and a sensor
+/// ([`RobotSetup`]).
+///
+/// # Errors
+/// [`UnknownStrategy`] listing the registered names.
+pub fn build_for(
+    name: &str,
+    setup: &RobotSetup,
+) -> Result<Box<dyn PolygonStrategy + Send>, UnknownStrategy> {
+    REGISTRY.get(name).map(|e| (e.build)(setup))
 }
 
 /// [`build`], `None` for an unknown name.

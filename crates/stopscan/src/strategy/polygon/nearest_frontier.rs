@@ -12,6 +12,7 @@ use super::known::{self, Known, Target};
 use super::{PolygonFeedback, PolygonStrategy};
 use crate::kernel::Point;
 use crate::protocol::Action;
+use crate::protocol::polygon::RobotSetup;
 
 /// Nearest-frontier exploration. Its whole state is serialisable.
 #[derive(Debug, Clone, Default, PartialEq, Serialize, Deserialize)]
@@ -23,6 +24,11 @@ impl NearestFrontier {
     /// A fresh strategy.
     pub fn new() -> Self {
         Self::default()
+    }
+
+    /// A fresh strategy for a robot with a footprint and a sensor rule ([`RobotSetup`]).
+    pub fn for_robot(setup: &RobotSetup) -> Self {
+        Self { known: Known::for_robot(setup) }
     }
 
     /// After the scan that became view `cur`: the unexplored window nearest by travel.

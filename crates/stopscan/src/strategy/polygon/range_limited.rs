@@ -34,6 +34,7 @@ use super::{PolygonFeedback, PolygonStrategy};
 use crate::algorithm::visibility::BoundaryPiece;
 use crate::kernel::Point;
 use crate::protocol::Action;
+use crate::protocol::polygon::RobotSetup;
 
 /// The range-limited exploration of the paper. Its whole state is serialisable.
 #[derive(Debug, Clone, Default, PartialEq, Serialize, Deserialize)]
@@ -57,6 +58,11 @@ impl RangeLimited {
     /// A fresh strategy.
     pub fn new() -> Self {
         Self::default()
+    }
+
+    /// A fresh strategy for a robot with a footprint and a sensor rule ([`RobotSetup`]).
+    pub fn for_robot(setup: &RobotSetup) -> Self {
+        Self { known: Known::for_robot(setup), ..Self::default() }
     }
 
     /// Wall points of view `v` where an unexplored frontier starts: `(window, point, wall)`,

@@ -1,0 +1,87 @@
+//! What a robot with a footprint can see at all: the free space seen from its reachable
+//! configuration space ([`crate::world::polygon::Reach`]).
+//!
+//! The exact region visible from a polygon (its weak visibility region) is not computed;
+//! instead the visibility regions from sample points of the reachable configuration space
+//! (its vertices and the centroids of its triangles), and from wherever a run scanned, are
+//! united. The result lies inside the exact region, so the area "not visible from anywhere
+//! reachable" it leaves ([`unreachable_area`]) is an upper estimate, and a coverage measured
+//! against it is an upper estimate of the true one (stated in the run record).
+
+use crate::algorithm::region::Region;
+use crate::kernel::Point;
+use crate::world::polygon::PolygonWorld;
+
+/// Sample points of the reachable configuration space: its vertices and the centroid of
+/// every triangle of its triangulation; empty for a point robot.
+pub fn reachable_samples(world: &PolygonWorld) -> Vec<Point> {
+    let Some(reach) = world.reach() else { return Vec::new() };
+    let mut out: Vec<Point> = reach.domain().rings().iter().flatten().copied().collect();
+    let m = reach.mesh();
+    out.extend(m.tri.iter().map(|t| {
+        let p = t.map(|i| m.points()[i as usize]);
+        [(p[0][0] + p[1][0] + p[2][0]) / 3.0, (p[0][1] + p[1][1] + p[2][1]) / 3.0]
+    }));
+    out
+}
+
+/// The union of what the world's sensor sees from `points` and the `seen` polygons (a run's
+/// scans). Points the sensor cannot scan from are skipped.
+pub fn visible_from(world: &PolygonWorld, points: &[Point], seen: &[Vec<Point>]) -> Region {
+    use rayon::prelude::*;
+    let mut polys: Vec<Vec<Point>> =
+        points.par_iter().filter_map(|&p| world.scan(p).ok().map(|o| o.region.polygon)).collect();
+    polys.extend(seen.iter().cloned());
+    Region::union_all(&polys)
+}
+
+/// The free area no sampled reachable viewpoint and no scan sees: `free − visible`, never
+/// below 0.
+pub fn unreachable_area(world: &PolygonWorld, visible: &Region) -> f64 {
+    (world.domain().area() - visible.area()).max(0.0)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::geometry::Domain;
+    use crate::protocol::polygon::Footprint;
+
+    #[test]
+    fn a_pocket_behind_a_narrow_gap_is_unreachable_but_partly_visible() {
+        // A 6 × 4 room; a wall at x = 6 with a 0.3-wide gap at y ∈ [1.85, 2.15] into a
+        // 2 × 4 pocket. A robot of radius 0.2 cannot pass the gap.
+        let outer = vec![
+            [0.0, 0.0],
+            [6.0, 0.0],
+            [6.0, 1.85],
+            [6.2, 1.85],
+            [6.2, 0.0],
+            [8.2, 0.0],
+            [8.2, 4.0],
+            [6.2, 4.0],
+            [6.2, 2.15],
+            [6.0, 2.15],
+            [6.0, 4.0],
+            [0.0, 4.0],
+        ];
+        let d = Domain::new(outer, vec![]).unwrap();
+        let free = d.area();
+        let w = PolygonWorld::with_robot(d, None, &Footprint::disc(0.2).unwrap(), Some([1.0, 2.0]))
+            .unwrap();
+        let reach = w.reach().unwrap();
+        // The configuration space is the room shrunk by 0.2, with a small bulge into the
+        // mouth of the gap (the centre gets within 0.2 of the gap's corners): the pocket is
+        // out of reach.
+        assert!(reach.domain().area() < 5.6 * 3.6 + 0.05, "{}", reach.domain().area());
+        assert!(reach.domain().area() > 5.6 * 3.6 - 0.01);
+        assert!(reach.domain().rings().iter().flatten().all(|p| p[0] < 6.0 - 0.1));
+        let samples = reachable_samples(&w);
+        assert!(!samples.is_empty());
+        let v = visible_from(&w, &samples, &[]);
+        let lost = unreachable_area(&w, &v);
+        // The room is seen whole; of the pocket only what the gap lets through.
+        assert!(lost > 0.0 && lost < 8.0, "{lost}");
+        assert!(v.area() > 24.0 && v.area() < free, "{}", v.area());
+    }
+}
