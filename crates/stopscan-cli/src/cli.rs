@@ -332,6 +332,26 @@ pub(crate) struct ExploreArgs {
     /// becomes Lemma 4's and the lower bound area / (πR²).
     #[arg(long, allow_negative_numbers = true)]
     pub(crate) range: Option<f64>,
+    /// The robot's radius in metres: viewpoints and moves stay in the configuration space
+    /// (the free space shrunk by the robot), scans still see the whole free space, and space
+    /// no reachable viewpoint can see is reported as unreachable area.
+    #[arg(long, allow_negative_numbers = true, conflicts_with = "footprint")]
+    pub(crate) robot_radius: Option<f64>,
+    /// A convex footprint polygon around the robot's reference point, as nav2 writes it:
+    /// "[[x, y], [x, y], ...]" in metres (kept at a fixed heading).
+    #[arg(long, allow_hyphen_values = true)]
+    pub(crate) footprint: Option<String>,
+    /// The sensor's beams per revolution: a window shorter than the beam spacing at its
+    /// distance (d·2π/beams) is not worth a trip.
+    #[arg(long, allow_negative_numbers = true, value_parser = count_at_least(1))]
+    pub(crate) beams: Option<usize>,
+    /// The smallest feature the sensor resolves, metres (windows shorter are not worth a trip).
+    #[arg(long, allow_negative_numbers = true, default_value_t = 0.0)]
+    pub(crate) min_feature: f64,
+    /// The shortest window worth a trip, metres [default: the robot's width, and at least two
+    /// cells of an occupancy map; 0 for a point robot on a polygon].
+    #[arg(long, allow_negative_numbers = true)]
+    pub(crate) min_window: Option<f64>,
     /// Compute the offline greedy reference for domains up to this many vertices.
     #[arg(long, default_value_t = 1000, allow_negative_numbers = true, value_parser = count_at_least(0))]
     pub(crate) greedy_max_vertices: usize,

@@ -11,6 +11,7 @@ use stopscan::offline::polygon::{ReferenceLimits, Solver};
 use stopscan::pipeline::explore::{Exploration, ExploreError, ExploreOptions};
 use stopscan::pipeline::sweep::SweepEvent;
 use stopscan::protocol::CostModel;
+use stopscan::protocol::polygon::Footprint;
 use stopscan::run_record::RunRecord;
 
 use crate::cli::{ExploreArgs, Format, Global, parse_point};
@@ -27,12 +28,30 @@ fn explore_error(e: ExploreError) -> anyhow::Error {
     }
 }
 
+/// The footprint from `--robot-radius` or `--footprint`.
+fn footprint(a: &ExploreArgs) -> anyhow::Result<Footprint> {
+    if let Some(r) = a.robot_radius {
+        return Footprint::disc(r).map_err(|e| anyhow::anyhow!("--robot-radius: {e}"));
+    }
+    let Some(text) = &a.footprint else { return Ok(Footprint::Point) };
+    let vertices: Vec<[f64; 2]> = serde_json::from_str(text).map_err(|e| {
+        anyhow::anyhow!(
+            "--footprint: expected \"[[x, y], [x, y], ...]\" (metres, nav2's format), got {text:?}: {e}"
+        )
+    })?;
+    Footprint::convex(vertices).map_err(|e| anyhow::anyhow!("--footprint: {e}"))
+}
+
 /// The pipeline's options from the arguments.
 fn options(a: &ExploreArgs, g: &Global) -> anyhow::Result<ExploreOptions> {
     Ok(ExploreOptions {
         strategy: a.strategy.clone(),
         cost: CostModel::new(a.scan_time, a.move_time, a.speed)?,
         range: a.range,
+        footprint: footprint(a)?,
+        beams: a.beams.map(|b| u32::try_from(b).unwrap_or(u32::MAX)),
+        min_feature: a.min_feature,
+        min_window: a.min_window,
         limits: ReferenceLimits {
             greedy_max_vertices: a.greedy_max_vertices,
             optimum_max_vertices: a.optimum_max_vertices,

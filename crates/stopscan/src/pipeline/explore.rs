@@ -17,12 +17,12 @@ use crate::io::{Environment, LoadError};
 use crate::kernel::{Num, Point};
 use crate::offline::polygon::{OfflineError, ReferenceLimits};
 use crate::protocol::CostModel;
-use crate::protocol::polygon::PolygonObservation;
-use crate::run_record::RunRecord;
+use crate::protocol::polygon::{Footprint, PolygonObservation, RobotSetup, Sensor};
+use crate::run_record::{RobotInfo, RunRecord, SensorInfo};
 use crate::sim::polygon::{PolygonSimError, Reframe};
 use crate::sim::{Fanout, JsonLinesTrace, Observer};
 use crate::strategy::UnknownStrategy;
-use crate::world::polygon::PolygonWorld;
+use crate::world::polygon::{PolygonWorld, WorldError};
 
 /// The built-in office floor of the main job (`stopscan generate office --size 6 --desks 16`),
 /// as GeoJSON with its start.
@@ -41,6 +41,14 @@ pub struct ExploreOptions {
     pub cost: CostModel,
     /// The sensor range (metres), if limited.
     pub range: Option<f64>,
+    /// The robot's footprint (a point: the paper's model).
+    pub footprint: Footprint,
+    /// The sensor's beams per revolution (`None`: continuous).
+    pub beams: Option<u32>,
+    /// The smallest feature the sensor resolves, metres.
+    pub min_feature: f64,
+    /// The shortest window worth a trip, metres (`None`: [`default_min_window`]).
+    pub min_window: Option<f64>,
     /// The budgets of the offline references.
     pub limits: ReferenceLimits,
     /// The seed recorded in the run record.
@@ -57,10 +65,63 @@ impl Default for ExploreOptions {
             strategy: "depth_first".into(),
             cost: CostModel::default(),
             range: None,
+            footprint: Footprint::Point,
+            beams: None,
+            min_feature: 0.0,
+            min_window: None,
             limits: ReferenceLimits::default(),
             seed: 0,
             trace: None,
         }
+    }
+}
+
+/// The default of the window rule's `min_window`: a window narrower than the robot, or no
+/// longer than two cells of the occupancy map it was traced from (a pixel step of a wall
+/// with its rounding), is not worth a trip. 0 for a point robot on a polygon input: every
+/// window counts, as in the paper.
+pub fn default_min_window(footprint: &Footprint, cell_size: Option<f64>) -> f64 {
+    footprint.width().max(cell_size.map_or(0.0, |c| 2.0 * c))
+}
+
+impl ExploreOptions {
+    /// The robot as strategies are told about it, in `env` (whose cell size sets the default
+    /// window rule).
+    pub fn robot(&self, env: &Environment) -> RobotSetup {
+        RobotSetup {
+            cost: self.cost,
+            footprint: self.footprint.clone(),
+            sensor: Sensor {
+                range: self.range,
+                beams: self.beams,
+                min_feature: self.min_feature,
+                min_window: self
+                    .min_window
+                    .unwrap_or_else(|| default_min_window(&self.footprint, env.cell_size)),
+            },
+        }
+    }
+
+    /// The sensor's parameters are finite and not negative, and a beam count is positive.
+    ///
+    /// # Errors
+    /// [`ExploreError::Parameter`] naming the first that is not.
+    pub fn check_sensor(&self) -> Result<(), ExploreError> {
+        let nonneg = |name: &'static str, v: f64| {
+            if v.is_finite() && v >= 0.0 {
+                Ok(())
+            } else {
+                Err(InvalidParameter::new(name, "be a finite number of metres >= 0", &Num(v)))
+            }
+        };
+        nonneg("min_feature", self.min_feature)?;
+        if let Some(w) = self.min_window {
+            nonneg("min_window", w)?;
+        }
+        if self.beams == Some(0) {
+            return Err(InvalidParameter::new("beams", "be at least 1", &0).into());
+        }
+        Ok(())
     }
 }
 
@@ -97,6 +158,9 @@ pub enum ExploreError {
     /// The start lies outside the free space (input coordinates).
     #[error("the start ({}, {}) is outside the free space", Num(.0[0]), Num(.0[1]))]
     StartOutside(Point),
+    /// The robot's footprint fits nowhere, or not at the start (input coordinates).
+    #[error(transparent)]
+    World(#[from] WorldError),
     /// The environment file does not load.
     #[error(transparent)]
     Load(#[from] LoadError),
@@ -178,11 +242,9 @@ pub fn explore_file(
     progress: Progress,
 ) -> Result<Exploration, ExploreError> {
     check_range(&options.strategy, options.range)?;
+    options.check_sensor()?;
     let env = crate::io::read_environment(path)?;
-    let start = match start {
-        Some(s) => env.frame.to_local(s),
-        None => crate::io::sweep::default_start(&env)?,
-    };
+    let start = start.map(|s| env.frame.to_local(s));
     let name = path.file_stem().and_then(|s| s.to_str()).unwrap_or("environment");
     explore(name, &env, start, options, progress)
 }
@@ -196,13 +258,12 @@ pub fn explore_file(
 /// As [`explore`].
 pub fn office(seed: u64, progress: Progress) -> Result<Exploration, ExploreError> {
     let env = crate::io::text_formats::parse_geojson(OFFICE_GEOJSON, "built-in office floor")?;
-    let start = crate::io::sweep::default_start(&env)?;
     let options = ExploreOptions {
         limits: ReferenceLimits { optimum_max_vertices: 100, ..ReferenceLimits::default() },
         seed,
         ..ExploreOptions::default()
     };
-    explore("office (built-in)", &env, start, &options, progress)
+    explore("office (built-in)", &env, None, &options, progress)
 }
 
 /// Counts scans and metres for the progress line.
@@ -224,25 +285,46 @@ impl<O> Observer<Point, O> for Counter<'_, '_> {
     }
 }
 
-/// Explores `env` from `start` (local frame) and measures the run: the run record (in the
-/// input's coordinates), the scene, and the event trace streamed to `options.trace`.
-/// `progress` hears the scans and metres so far, then the offline stage being computed.
+/// Explores `env` from `start` (local frame; by default the file's start, else a point
+/// inside the free space, or with a footprint the roomiest point of its configuration space)
+/// and measures the run: the run record (in the input's coordinates), the scene, and the
+/// event trace streamed to `options.trace`. `progress` hears the scans and metres so far,
+/// then the offline stage being computed.
 ///
 /// # Errors
 /// As [`explore_file`].
 pub fn explore(
     name: &str,
     env: &Environment,
-    start: Point,
+    start: Option<Point>,
     options: &ExploreOptions,
     mut progress: Progress,
 ) -> Result<Exploration, ExploreError> {
     let o = options;
     check_range(&o.strategy, o.range)?;
     check_budgets(&o.limits)?;
-    let mut strategy = crate::strategy::polygon::build(&o.strategy, &o.cost)?;
+    o.check_sensor()?;
+    let setup = o.robot(env);
+    let mut strategy = crate::strategy::polygon::build_for(&o.strategy, &setup)?;
     let frame = env.frame;
-    let world = PolygonWorld::with_range(env.domain.clone(), o.range)?;
+    let start = start.or_else(|| env.default_start());
+    if let Some(s) = start
+        && env.domain.locate(s) == crate::geometry::Location::Outside
+    {
+        return Err(ExploreError::StartOutside(frame.to_input(s)));
+    }
+    let world = PolygonWorld::with_robot(env.domain.clone(), o.range, &o.footprint, start)
+        .map_err(|e| match e {
+            WorldError::StartBlocked { start, clearance } => {
+                WorldError::StartBlocked { start: frame.to_input(start), clearance }
+            }
+            e => e,
+        })?;
+    let start = match (start, world.reach()) {
+        (_, Some(r)) => r.start(),
+        (Some(s), None) => s,
+        (None, None) => world.interior_point(),
+    };
     if world.scan(start).is_err() {
         return Err(ExploreError::StartOutside(frame.to_input(start)));
     }
@@ -282,10 +364,56 @@ pub fn explore(
     )?;
     let regions: Vec<_> = run.scans.iter().map(|s| s.region.clone()).collect();
     let svg = crate::render::exploration_svg(&env.domain, &regions, &run.path);
-    let mut record = RunRecord::polygon(name, &world, &o.strategy, &o.cost, &run, &refs, o.seed)
-        .in_frame(&frame);
+    let mut record = RunRecord::polygon(name, &world, &o.strategy, &o.cost, &run, &refs, o.seed);
+    record.sensor = SensorInfo::of(&setup.sensor, &strategy.skipped());
+    if let Some(reach) = world.reach() {
+        progress("offline: the area visible from the reachable configuration space");
+        record.robot = Some(robot_info(&world, reach, &setup, &run, &record, &strategy.skipped()));
+    }
+    let mut record = record.in_frame(&frame);
     record.error = failure.as_ref().map(ToString::to_string);
     Ok(Exploration { record, svg, failure })
+}
+
+/// The footprint's part of the run record: the configuration space, what can be seen from
+/// it ([`crate::offline::polygon::reach`]) and what the run covered of that.
+fn robot_info(
+    world: &PolygonWorld,
+    reach: &crate::world::polygon::Reach,
+    setup: &RobotSetup,
+    run: &crate::sim::polygon::PolygonRun,
+    record: &RunRecord,
+    skipped: &crate::strategy::polygon::Skipped,
+) -> RobotInfo {
+    use crate::offline::polygon::reach as r;
+    let seen: Vec<Vec<Point>> = run.scans.iter().map(|s| s.region.polygon.clone()).collect();
+    let visible = r::visible_from(world, &r::reachable_samples(world), &seen);
+    let visible_area = visible.area();
+    let scale = crate::kernel::magnitude(world.domain().rings().iter().flatten());
+    RobotInfo {
+        footprint: setup.footprint.clone(),
+        clearance: setup.footprint.planning_clearance(scale),
+        configuration_space_rule: format!(
+            "free space minus the Minkowski sum of its boundary with the reflected footprint ({})",
+            match &setup.footprint {
+                Footprint::Disc { .. } => format!(
+                    "a disc as the circumscribed {}-gon, so the space is conservative by at most 0.5% of the radius",
+                    crate::protocol::polygon::DISC_SIDES
+                ),
+                _ => "the convex polygon at a fixed heading".into(),
+            }
+        ),
+        reachable_configuration_space_area: reach.domain().area(),
+        configuration_space_components: reach.components(),
+        visible_from_reachable_area: visible_area,
+        unreachable_area: r::unreachable_area(world, &visible),
+        coverage_of_reachable: if visible_area > 0.0 {
+            (record.metrics.covered_area / visible_area).min(1.0)
+        } else {
+            1.0
+        },
+        windows_out_of_reach: skipped.out_of_reach,
+    }
 }
 
 #[cfg(test)]
@@ -308,11 +436,12 @@ mod tests {
     #[test]
     fn a_start_outside_is_an_error_in_input_coordinates() {
         let env = crate::io::text_formats::parse_geojson(OFFICE_GEOJSON, "office").unwrap();
-        let e = explore("office", &env, [-1e3, -1e3], &ExploreOptions::default(), &mut |_| {})
-            .unwrap_err();
+        let e =
+            explore("office", &env, Some([-1e3, -1e3]), &ExploreOptions::default(), &mut |_| {})
+                .unwrap_err();
         assert_eq!(e.to_string(), "the start (-1000, -1000) is outside the free space");
         let o = ExploreOptions { strategy: "warp".into(), ..ExploreOptions::default() };
-        let e = explore("office", &env, [0.0, 0.0], &o, &mut |_| {}).unwrap_err();
+        let e = explore("office", &env, Some([0.0, 0.0]), &o, &mut |_| {}).unwrap_err();
         assert!(matches!(e, ExploreError::Strategy(_)), "{e}");
     }
 }

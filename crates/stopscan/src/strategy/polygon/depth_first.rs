@@ -107,4 +107,8 @@ impl PolygonStrategy for DepthFirst {
     fn act(&mut self, feedback: &PolygonFeedback) -> Action<Point> {
         known::act(self, feedback, |s| &mut s.known, Self::plan)
     }
+
+    fn skipped(&self) -> super::Skipped {
+        self.known.skipped
+    }
 }

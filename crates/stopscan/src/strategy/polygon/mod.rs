@@ -93,6 +93,10 @@ pub trait PolygonStrategy {
     fn name(&self) -> &str;
     /// The next action: move in a straight line to a point, scan, or done.
     fn act(&mut self, feedback: &PolygonFeedback) -> Action<Point>;
+    /// The windows closed without a visit so far, and why (none by default).
+    fn skipped(&self) -> Skipped {
+        Skipped::default()
+    }
 }
 
 #[cfg(test)]

@@ -195,4 +195,8 @@ impl PolygonStrategy for RangeLimited {
     fn act(&mut self, feedback: &PolygonFeedback) -> Action<Point> {
         known::act(self, feedback, |s| &mut s.known, Self::plan)
     }
+
+    fn skipped(&self) -> super::Skipped {
+        self.known.skipped
+    }
 }
