@@ -114,6 +114,16 @@ impl Region {
             .abs()
     }
 
+    /// Whether `p` lies inside the region (inside a shape's outer ring and in none of its
+    /// holes; points on a ring count as inside).
+    pub fn contains(&self, p: Point) -> bool {
+        use crate::kernel::{RingSide, ring_side};
+        self.shapes.iter().any(|s| {
+            s.first().is_some_and(|o| ring_side(o, p) != RingSide::Outside)
+                && s[1..].iter().all(|h| ring_side(h, p) != RingSide::Inside)
+        })
+    }
+
     /// Whether the region is empty.
     pub fn is_empty(&self) -> bool {
         self.shapes.is_empty()

@@ -354,14 +354,32 @@ pub fn explore(
     };
     // A run cut short is not measured against the offline references (they take time, and a
     // ratio of an unfinished run means nothing); its record says why it ended.
-    let limits = if failure.is_some() { ReferenceLimits::BOUNDS_ONLY } else { o.limits };
-    let refs = crate::offline::polygon::references(
+    let mut limits = if failure.is_some() { ReferenceLimits::BOUNDS_ONLY } else { o.limits };
+    // A robot with a footprint or a window rule sets out to see only part of the free space:
+    // the lower bounds then count witnesses in what the run saw (valid for any exploration
+    // that sees as much), and the point robot's references over the whole space do not
+    // apply; a footprint gets its own greedy reference.
+    let partial = world.reach().is_some() || !setup.sensor.excludes_nothing();
+    let seen = partial.then(|| {
+        let polys: Vec<Vec<Point>> = run.scans.iter().map(|s| s.region.polygon.clone()).collect();
+        crate::algorithm::region::Region::union_all(&polys)
+    });
+    if partial {
+        limits.greedy_max_vertices = 0;
+        limits.optimum_seconds = 0.0;
+    }
+    let mut refs = crate::offline::polygon::references_within(
         world.visibility(),
         start,
         o.range,
         limits,
+        seen.as_ref(),
         &mut |stage| progress(&format!("offline: {stage}")),
     )?;
+    if world.reach().is_some() && failure.is_none() && o.limits.greedy_max_vertices > 0 {
+        progress("offline: greedy reference in the configuration space");
+        refs.greedy = Some(crate::offline::polygon::reach::greedy(&world, start));
+    }
     let regions: Vec<_> = run.scans.iter().map(|s| s.region.clone()).collect();
     let svg = crate::render::exploration_svg(&env.domain, &regions, &run.path);
     let mut record = RunRecord::polygon(name, &world, &o.strategy, &o.cost, &run, &refs, o.seed);

@@ -36,6 +36,7 @@ use std::time::Instant;
 use serde::{Deserialize, Serialize};
 
 use crate::algorithm::cover::{RANGE_CHORD_TOLERANCE, bounds_of};
+use crate::algorithm::region::Region;
 use crate::algorithm::shortest_path::PathPlanner;
 use crate::algorithm::visibility::{Visibility, VisibilityError, range::clip};
 use crate::geometry::Location;
@@ -131,15 +132,33 @@ pub fn lower_bounds(
     range: Option<f64>,
     deadline: Option<Instant>,
 ) -> Result<LowerBounds, VisibilityError> {
+    lower_bounds_within(vis, start, range, deadline, None)
+}
+
+/// [`lower_bounds`] for any exploration that sees at least `within` (a part of the free
+/// space: what a run with a footprint or a window rule set out to see): only witnesses in
+/// `within` count, and `area / πR²` uses its area. Viewpoints may still lie anywhere, so the
+/// bounds hold for any robot.
+///
+/// # Errors
+/// [`VisibilityError`] if the start is outside the free space.
+pub fn lower_bounds_within(
+    vis: &Visibility,
+    start: Point,
+    range: Option<f64>,
+    deadline: Option<Instant>,
+    within: Option<&Region>,
+) -> Result<LowerBounds, VisibilityError> {
     let d = vis.domain();
+    let target_area = within.map_or_else(|| d.area(), Region::area);
     let area = match range {
         Some(r) if r > 0.0 && r.is_finite() => {
-            ((d.area() / (std::f64::consts::PI * r * r)).ceil() as usize).max(1)
+            ((target_area / (std::f64::consts::PI * r * r)).ceil() as usize).max(1)
         }
         _ => 1,
     };
     vis.query(start)?;
-    let setup = witnesses(vis, start, range, deadline)?;
+    let setup = witnesses(vis, start, range, deadline, within)?;
     let packing = packing(&setup, deadline);
     // Travel before the fractional packing: it is cheap and the time bound needs it; the
     // packing LP then has what is left of the budget.
@@ -231,13 +250,17 @@ fn witnesses(
     start: Point,
     range: Option<f64>,
     deadline: Option<Instant>,
+    within: Option<&Region>,
 ) -> Result<Setup, VisibilityError> {
     let d = vis.domain();
     let [lo, hi] = d.bounds();
     let extent = (hi[0] - lo[0]).hypot(hi[1] - lo[1]);
     let sagitta = range.map_or(0.0, |r| r * RANGE_CHORD_TOLERANCE);
     let tol = NEAR_REL * extent + 16.0 * rounding(magnitude(&[lo, hi])) + 2.0 * sagitta;
-    let points = witness_points(vis);
+    let mut points = witness_points(vis);
+    if let Some(r) = within {
+        points.retain(|&p| r.contains(p));
+    }
     let mut out = Vec::new();
     let mut complete = true;
     let mut examined = 0;

@@ -189,9 +189,28 @@ pub fn references(
     limits: ReferenceLimits,
     progress: Progress,
 ) -> Result<References, OfflineError> {
+    references_within(vis, start, range, limits, None, progress)
+}
+
+/// [`references`] for a run that set out to see only `within` (a footprint's reach, a
+/// window rule): the lower bounds count witnesses there only
+/// ([`bounds::lower_bounds_within`]); the greedy reference and the optimum are the full
+/// problem's.
+///
+/// # Errors
+/// [`OfflineError`] if the start is outside the free space.
+pub fn references_within(
+    vis: &Visibility,
+    start: Point,
+    range: Option<f64>,
+    limits: ReferenceLimits,
+    within: Option<&crate::algorithm::region::Region>,
+    progress: Progress,
+) -> Result<References, OfflineError> {
     let d = vis.domain();
     progress("lower bounds");
-    let lower = lower_bounds(vis, start, range, deadline_in(limits.bounds_seconds))?;
+    let lower =
+        bounds::lower_bounds_within(vis, start, range, deadline_in(limits.bounds_seconds), within)?;
     let n = d.vertex_count();
     let views = lower.views;
     let skipped = |why: String| OptimumReport::skipped(limits.solver, views, why);

@@ -41,6 +41,96 @@ pub fn unreachable_area(world: &PolygonWorld, visible: &Region) -> f64 {
     (world.domain().area() - visible.area()).max(0.0)
 }
 
+/// The offline greedy reference for a robot with a footprint and a range: from the start,
+/// repeatedly add the sampled reachable viewpoint ([`reachable_samples`]) whose scan sees
+/// the most area not yet covered, until everything any of them sees is covered. Coverage is
+/// required at the centroid of every triangle of the free space, weighted by its area.
+/// Unlike the point robot's reference, viewpoints need not see each other: the robot drives
+/// between them through its configuration space. A reference, not a bound.
+///
+/// `certified` is true when the chosen scans cover every witness any sample covers.
+pub fn greedy(world: &PolygonWorld, start: Point) -> super::ViewSet {
+    use rayon::prelude::*;
+    let mut cands = vec![start];
+    cands.extend(reachable_samples(world));
+    let regions: Vec<Option<(Vec<Point>, [Point; 2])>> = cands
+        .par_iter()
+        .map(|&c| {
+            world.scan(c).ok().map(|o| {
+                let b = crate::algorithm::cover::bounds_of(&o.region.polygon);
+                (o.region.polygon, b)
+            })
+        })
+        .collect();
+    let m = world.visibility().mesh();
+    let witnesses: Vec<(Point, f64)> = m
+        .tri
+        .iter()
+        .map(|t| {
+            let p = t.map(|i| m.points()[i as usize]);
+            let c = [(p[0][0] + p[1][0] + p[2][0]) / 3.0, (p[0][1] + p[1][1] + p[2][1]) / 3.0];
+            (c, crate::geometry::signed_area_of(&p).abs())
+        })
+        .collect();
+    // sees[c]: the witnesses candidate c covers.
+    let sees: Vec<Vec<u32>> = regions
+        .par_iter()
+        .map(|r| {
+            let Some((poly, b)) = r else { return Vec::new() };
+            witnesses
+                .iter()
+                .enumerate()
+                .filter(|(_, (w, _))| {
+                    w[0] >= b[0][0]
+                        && w[0] <= b[1][0]
+                        && w[1] >= b[0][1]
+                        && w[1] <= b[1][1]
+                        && crate::kernel::ring_side(poly, *w) != crate::kernel::RingSide::Outside
+                })
+                .map(|(i, _)| i as u32)
+                .collect()
+        })
+        .collect();
+    let mut covered = vec![false; witnesses.len()];
+    let mut chosen = vec![0usize];
+    for &w in &sees[0] {
+        covered[w as usize] = true;
+    }
+    let coverable: Vec<bool> = {
+        let mut c = vec![false; witnesses.len()];
+        for s in &sees {
+            for &w in s {
+                c[w as usize] = true;
+            }
+        }
+        c
+    };
+    // Lazy greedy: a candidate's gain only shrinks, so a stale gain is an upper bound. Gains
+    // are not negative, so their bits order as the numbers do; ties go to the earlier one.
+    let gain = |c: usize, covered: &[bool]| -> f64 {
+        sees[c].iter().filter(|&&w| !covered[w as usize]).map(|&w| witnesses[w as usize].1).sum()
+    };
+    let key = |g: f64| g.max(0.0).to_bits();
+    let mut heap: std::collections::BinaryHeap<(u64, std::cmp::Reverse<usize>)> =
+        (1..cands.len()).map(|c| (key(gain(c, &covered)), std::cmp::Reverse(c))).collect();
+    while let Some((_, std::cmp::Reverse(c))) = heap.pop() {
+        let now = gain(c, &covered);
+        if now <= 0.0 {
+            continue;
+        }
+        if heap.peek().is_some_and(|(top, _)| key(now) < *top) {
+            heap.push((key(now), std::cmp::Reverse(c)));
+            continue;
+        }
+        chosen.push(c);
+        for &w in &sees[c] {
+            covered[w as usize] = true;
+        }
+    }
+    let certified = coverable.iter().zip(&covered).all(|(&can, &did)| !can || did);
+    super::ViewSet { viewpoints: chosen.into_iter().map(|c| cands[c]).collect(), certified }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -83,5 +173,11 @@ mod tests {
         // The room is seen whole; of the pocket only what the gap lets through.
         assert!(lost > 0.0 && lost < 8.0, "{lost}");
         assert!(v.area() > 24.0 && v.area() < free, "{}", v.area());
+        // The greedy reference covers everything the samples see: the room, from one place
+        // or two.
+        let g = greedy(&w, [1.0, 2.0]);
+        assert!(g.certified);
+        assert!((1..=3).contains(&g.viewpoints.len()), "{:?}", g.viewpoints);
+        assert_eq!(g.viewpoints[0], [1.0, 2.0]);
     }
 }

@@ -66,6 +66,14 @@ pub(super) struct Target {
     off_gap: bool,
 }
 
+impl Target {
+    /// The same target with its viewpoint at `z` (a point of the same view's region that the
+    /// robot can drive to straight from its viewpoint).
+    pub(super) fn moved_to(self, z: Point) -> Self {
+        Self { at: z, ..self }
+    }
+}
+
 /// Where on the uncovered part of a window the next viewpoint goes (the paper leaves it open:
 /// "choose a point z on any constructed edge", and notes that the choice decides the count).
 #[derive(Debug, Clone, Copy, Default, PartialEq, Eq, Serialize, Deserialize)]
@@ -326,6 +334,66 @@ impl Known {
                 .map(|k| [x[0] + k * c * n[0], x[1] + k * c * n[1]])
                 .find(|&z| v.reaches(z) && v.clear(z, c))
         })
+    }
+
+    /// The window segment a target is for, and the part of it (as points) still open.
+    pub(super) fn gap_of(&self, t: &Target) -> [Point; 2] {
+        let w = &self.views[t.view].windows[t.window];
+        let (dx, dy) = (w.to[0] - w.from[0], w.to[1] - w.from[1]);
+        [
+            [w.from[0] + t.gap[0] * dx, w.from[1] + t.gap[0] * dy],
+            [w.from[0] + t.gap[1] * dx, w.from[1] + t.gap[1] * dy],
+        ]
+    }
+
+    /// Viewpoints for target `t` stepped back from its window into its view's region by each
+    /// of `depths` (metres, beyond the target's own step), that the robot can drive to straight
+    /// from the view's viewpoint keeping its clearance: places from where one scan may look
+    /// through several windows of the view at once.
+    pub(super) fn stepped_back(&self, t: &Target, depths: &[f64]) -> Vec<Point> {
+        let v = &self.views[t.view];
+        let [p, q] = self.gap_of(t);
+        let (dx, dy) = (q[0] - p[0], q[1] - p[1]);
+        let len = dx.hypot(dy);
+        if len == 0.0 {
+            return Vec::new();
+        }
+        let n = [-dy / len, dx / len];
+        let c = self.clearance(t.view);
+        depths
+            .iter()
+            .map(|&s| [t.at[0] + s * n[0], t.at[1] + s * n[1]])
+            .filter(|&z| v.reaches(z) && (c == 0.0 || v.clear(z, c)))
+            .collect()
+    }
+
+    /// Whether `z`, a point inside view `view`'s region, sees the middle of the segment
+    /// `g` on the region's boundary across the region (a straight line that crosses none of
+    /// its edges).
+    pub(super) fn sees_within(&self, view: usize, z: Point, g: [Point; 2]) -> bool {
+        let v = &self.views[view];
+        let m = [f64::midpoint(g[0][0], g[1][0]), f64::midpoint(g[0][1], g[1][1])];
+        // A hair off the boundary, toward z.
+        let m = [m[0] + 1e-6 * (z[0] - m[0]), m[1] + 1e-6 * (z[1] - m[1])];
+        let n = v.polygon.len();
+        ring_side(&v.polygon, m) == RingSide::Inside
+            && (0..n).all(|i| !segments_intersect(z, m, v.polygon[i], v.polygon[(i + 1) % n]))
+    }
+
+    /// Whether `z` lies strictly inside view `view`'s region.
+    pub(super) fn inside(&self, view: usize, z: Point) -> bool {
+        let v = &self.views[view];
+        z[0] >= v.bounds[0][0]
+            && z[0] <= v.bounds[1][0]
+            && z[1] >= v.bounds[0][1]
+            && z[1] <= v.bounds[1][1]
+            && ring_side(&v.polygon, z) == RingSide::Inside
+    }
+
+    /// How far view `view`'s region reaches from its viewpoint (its farthest vertex).
+    pub(super) fn reach_of(&self, view: usize) -> f64 {
+        let v = &self.views[view];
+        v.polygon.iter().map(|p| (p[0] - v.at[0]).hypot(p[1] - v.at[1])).fold(0.0, f64::max)
     }
 
     /// The index among `view`'s windows of the window that is its piece `piece`, if it is one

@@ -8,14 +8,18 @@
 //! - `range_limited`: [`RangeLimited`], the paper's algorithm with a range restriction
 //!   (Lemma 4);
 //! - `nearest_frontier`: [`NearestFrontier`], the nearest open window by travel;
-//! - `greedy_nbv`: [`GreedyNbv`], the most predicted area per second of cost.
+//! - `greedy_nbv`: [`GreedyNbv`], the most predicted area per second of cost;
+//! - `cost_aware`: [`CostAware`], stopscan's own: viewpoints on and off windows, weighed by
+//!   the predicted new area behind the windows they see against travel and scan time.
 
+mod cost_aware;
 mod depth_first;
 mod greedy_nbv;
 mod known;
 mod nearest_frontier;
 mod range_limited;
 
+pub use cost_aware::CostAware;
 pub use depth_first::DepthFirst;
 pub use greedy_nbv::GreedyNbv;
 pub use known::{Placement, Skipped};
@@ -50,6 +54,11 @@ pub const REGISTRY: Registry<PolygonBuild> = Registry::new(&[
         name: "greedy_nbv",
         summary: "greedy next-best-view: most predicted new area per second of cost",
         build: |s| Box::new(GreedyNbv::for_robot(s)),
+    },
+    Entry {
+        name: "cost_aware",
+        summary: "stopscan's own: the most predicted new area per second, viewpoints on and off windows, no goal churn",
+        build: |s| Box::new(CostAware::for_robot(s)),
     },
     Entry {
         name: "range_limited",
@@ -112,7 +121,7 @@ mod tests {
         let e = build("warp", &CostModel::default()).err().unwrap();
         assert_eq!(
             e.to_string(),
-            "unknown strategy \"warp\"; use one of: depth_first, nearest_frontier, greedy_nbv, range_limited"
+            "unknown strategy \"warp\"; use one of: depth_first, nearest_frontier, greedy_nbv, cost_aware, range_limited"
         );
     }
 }
