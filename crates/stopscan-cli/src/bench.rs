@@ -49,8 +49,11 @@ pub(crate) fn run(a: &BenchArgs, g: &Global) -> anyhow::Result<()> {
     if a.target == BenchTarget::Roi {
         return bench_roi(a, g);
     }
+    if a.target == BenchTarget::Floors {
+        return bench_floors(a, g);
+    }
     let (name, n, secs, ops) = match a.target {
-        BenchTarget::Visibility | BenchTarget::Explore | BenchTarget::Roi => {
+        BenchTarget::Visibility | BenchTarget::Explore | BenchTarget::Roi | BenchTarget::Floors => {
             unreachable!("handled above")
         }
         BenchTarget::Mdp => {
@@ -139,6 +142,73 @@ pub(crate) fn run(a: &BenchArgs, g: &Global) -> anyhow::Result<()> {
 
 /// `bench explore`: n generated office floors (seeded sizes and desks), all explored in
 /// parallel; reports the runs that fail a check.
+/// `bench floors`: every strategy on real maps and office floors, side by side.
+fn bench_floors(a: &BenchArgs, g: &Global) -> anyhow::Result<()> {
+    use stopscan::pipeline::floors::{FloorsEvent, FloorsOptions, floors};
+    let defaults = FloorsOptions::default();
+    let range = a.range.unwrap_or(defaults.range);
+    if !(range.is_finite() && range > 0.0) {
+        bail!("--range must be a positive number of metres, got {range}");
+    }
+    let options = FloorsOptions {
+        data: Some(a.data.clone()),
+        offices: a.offices,
+        seed: g.seed,
+        strategies: match &a.strategies {
+            Some(s) => s.split(',').map(|x| x.trim().to_string()).collect(),
+            None => defaults.strategies.clone(),
+        },
+        footprint: stopscan::protocol::polygon::Footprint::disc(a.robot_radius)
+            .map_err(|e| anyhow::anyhow!("--robot-radius: {e}"))?,
+        range,
+        cost: CostModel::new(a.scan_time, 0.0, a.speed)?,
+        ..defaults
+    };
+    if !a.data.is_dir() {
+        bail!(
+            "--data {}: no such folder (the shared ROS maps are in ../shared/data/ros-maps beside the repository; the repository's own are in fixtures/ros-maps)",
+            a.data.display()
+        );
+    }
+    let bar = std::cell::OnceCell::new();
+    let report = floors(&options, &mut |e| match e {
+        FloorsEvent::Started { runs } => {
+            let _ = bar.set(crate::output::bar(runs, "runs"));
+        }
+        FloorsEvent::RunDone { .. } => {
+            if let Some(b) = bar.get() {
+                b.inc(1);
+            }
+        }
+    })
+    .map_err(|e| anyhow::anyhow!(e))?;
+    if let Some(b) = bar.get() {
+        b.finish_and_clear();
+    }
+    if let Some(path) = &a.chart {
+        stopscan::render::write_chart(&report.chart(), &path.with_extension(""))?;
+    }
+    emit(g, &report, true, |w| {
+        let mut t = crate::output::Table::new(&[
+            "strategy",
+            "scans",
+            "mission time (s)",
+            "min coverage of reachable",
+            "failures",
+        ]);
+        for s in &report.totals {
+            t.row(vec![
+                s.strategy.clone(),
+                s.scans.to_string(),
+                crate::output::num(Some(s.time), 1),
+                crate::output::num(Some(s.min_coverage_of_reachable), 4),
+                s.failures.to_string(),
+            ]);
+        }
+        t.write(w)
+    })
+}
+
 fn bench_explore(a: &BenchArgs, g: &Global) -> anyhow::Result<()> {
     // n generated office floors (seeded sizes and desks), all explored in parallel.
     let n = a.n.unwrap_or(1000);

@@ -562,6 +562,10 @@ pub(crate) enum BenchTarget {
     Visibility,
     /// Exploration of --n generated office floors in parallel (the paper's algorithm).
     Explore,
+    /// Every strategy side by side on the ROS maps of --data and --offices generated office
+    /// floors, for a robot with a footprint: scans, mission time, coverage, unreachable area,
+    /// certified ratio (JSON to --out, chart to --chart).
+    Floors,
     /// A random region of --n cells (default 10^6) explored by --robots robots (default 64),
     /// then the three Fig. 7 sweeps of the ROI paper (100 trials per point).
     Roi,
@@ -593,4 +597,25 @@ pub(crate) struct BenchArgs {
     /// Robots for `bench roi`.
     #[arg(long, default_value_t = 64, allow_negative_numbers = true, value_parser = count_at_least(1))]
     pub(crate) robots: usize,
+    /// `bench floors`: a folder of ROS map .yaml files (searched one level deep).
+    #[arg(long, default_value = "../shared/data/ros-maps")]
+    pub(crate) data: PathBuf,
+    /// `bench floors`: generated office floors added to the maps.
+    #[arg(long, default_value_t = 12, allow_negative_numbers = true, value_parser = count_at_least(0))]
+    pub(crate) offices: usize,
+    /// `bench floors`: the strategies, comma-separated (default: all but range_limited).
+    #[arg(long)]
+    pub(crate) strategies: Option<String>,
+    /// `bench floors`: the robot's radius, metres.
+    #[arg(long, allow_negative_numbers = true, default_value_t = 0.2)]
+    pub(crate) robot_radius: f64,
+    /// `bench floors`: seconds per scan.
+    #[arg(long, allow_negative_numbers = true, default_value_t = 30.0)]
+    pub(crate) scan_time: f64,
+    /// `bench floors`: metres per second.
+    #[arg(long, allow_negative_numbers = true, default_value_t = 0.5)]
+    pub(crate) speed: f64,
+    /// `bench floors`: write the mission-time chart (SVG and PNG beside it).
+    #[arg(long)]
+    pub(crate) chart: Option<PathBuf>,
 }

@@ -10,6 +10,8 @@
 //!   the run record, the scene, the event trace;
 //! - [`sweep`]: every environment file of a folder with one or every polygon strategy,
 //!   a file that does not load becoming rows with its error (`explore --env DIR`);
+//! - [`floors`]: every strategy side by side on real maps and office floors, for a robot
+//!   with a footprint (`bench floors`);
 //! - [`mission`]: a region-of-interest mission and its state file (`stopscan-mission/2`),
 //!   stepped, saved and resumed (`roi`);
 //! - [`corner`]: the corner commands' results as typed, serialisable reports;
@@ -19,6 +21,7 @@
 
 pub mod corner;
 pub mod explore;
+pub mod floors;
 pub mod mission;
 pub mod reproduce;
 pub mod sweep;
