@@ -40,17 +40,12 @@ pub(crate) fn run(a: &BenchArgs, g: &Global) -> anyhow::Result<()> {
     if a.repeat > 1000 {
         bail!("--repeat must be at most 1,000, got {}", a.repeat);
     }
-    if a.target == BenchTarget::Visibility {
-        return crate::visibility::bench(a, g);
-    }
-    if a.target == BenchTarget::Explore {
-        return bench_explore(a, g);
-    }
-    if a.target == BenchTarget::Roi {
-        return bench_roi(a, g);
-    }
-    if a.target == BenchTarget::Floors {
-        return bench_floors(a, g);
+    match a.target {
+        BenchTarget::Visibility => return crate::visibility::bench(a, g),
+        BenchTarget::Explore => return bench_explore(a, g),
+        BenchTarget::Roi => return bench_roi(a, g),
+        BenchTarget::Floors => return bench_floors(a, g),
+        _ => {}
     }
     let (name, n, secs, ops) = match a.target {
         BenchTarget::Visibility | BenchTarget::Explore | BenchTarget::Roi | BenchTarget::Floors => {

@@ -235,93 +235,14 @@ pub fn floors(
     for s in &options.strategies {
         crate::strategy::polygon::REGISTRY.get(s)?;
     }
-    let mut inputs: Vec<(String, Environment)> = Vec::new();
-    if let Some(dir) = &options.data {
-        let files = map_files(dir)?;
-        if files.is_empty() {
-            return Err(ExploreError::NoFiles(dir.clone()));
-        }
-        for f in files {
-            let name = f.file_stem().and_then(|s| s.to_str()).unwrap_or("map").to_string();
-            inputs.push((name, crate::io::read_environment(&f)?));
-        }
-    }
-    for i in 0..options.offices {
-        // Sizes and desks vary with the seed, as `bench explore` draws them.
-        let seed = options.seed.wrapping_add(i as u64);
-        let rooms = 2 + (seed.wrapping_mul(7) % 5) as usize;
-        let desks = (seed.wrapping_mul(13) % (3 * rooms as u64)) as usize;
-        let inst = crate::generate::office(rooms, desks, seed).map_err(|e| {
-            ExploreError::Load(crate::io::LoadError::Invalid {
-                file: format!("office-{i}"),
-                source: e,
-            })
-        })?;
-        // No start: the roomiest point of the configuration space, as on the maps.
-        let env = Environment::new(inst.domain);
-        inputs.push((format!("office-{i}"), env));
-    }
+    let inputs = inputs(options)?;
     on(FloorsEvent::Started { runs: (inputs.len() * options.strategies.len()) as u64 });
     let mut maps = Vec::new();
     for (name, env) in &inputs {
         let mut runs = Vec::new();
         let mut greedy = None;
         for strategy in &options.strategies {
-            let o = ExploreOptions {
-                strategy: strategy.clone(),
-                cost: options.cost,
-                range: Some(options.range),
-                footprint: options.footprint.clone(),
-                limits: ReferenceLimits {
-                    greedy_max_vertices: 0,
-                    optimum_seconds: 0.0,
-                    bounds_seconds: options.bounds_seconds,
-                    ..ReferenceLimits::default()
-                },
-                seed: options.seed,
-                ..ExploreOptions::default()
-            };
-            let t0 = Instant::now();
-            let mut explored: Option<f64> = None;
-            let result = explore(name, env, None, &o, &mut |m: &str| {
-                if explored.is_none() && m.starts_with("offline") {
-                    explored = Some(t0.elapsed().as_secs_f64());
-                }
-            });
-            let explore_seconds = explored.unwrap_or_else(|| t0.elapsed().as_secs_f64());
-            runs.push(match result {
-                Ok(x) => {
-                    let r = &x.record;
-                    let robot = r.robot.as_ref();
-                    FloorRun {
-                        strategy: strategy.clone(),
-                        scans: r.metrics.totals.scans,
-                        time: r.metrics.totals.time,
-                        distance: r.metrics.totals.distance,
-                        coverage: r.metrics.coverage,
-                        coverage_of_reachable: robot
-                            .map_or(r.metrics.coverage, |b| b.coverage_of_reachable),
-                        unreachable_area: robot.map_or(0.0, |b| b.unreachable_area),
-                        time_lower: r.bounds.time_lower,
-                        certified_ratio: r.bounds.certified_ratio,
-                        explore_seconds,
-                        error: x.failure.map(|f| f.to_string()),
-                    }
-                }
-                Err(e) => FloorRun {
-                    strategy: strategy.clone(),
-                    scans: 0,
-                    time: 0.0,
-                    distance: 0.0,
-                    coverage: 0.0,
-                    coverage_of_reachable: 0.0,
-                    unreachable_area: 0.0,
-                    time_lower: 0.0,
-                    certified_ratio: None,
-                    explore_seconds,
-                    error: Some(e.to_string()),
-                },
-            });
+            runs.push(run_one(name, env, strategy, options));
             if greedy.is_none() {
                 greedy = greedy_reference(env, options);
             }
@@ -364,6 +285,96 @@ pub fn floors(
     })
 }
 
+/// The maps of `options.data` and the generated office floors, named.
+fn inputs(options: &FloorsOptions) -> Result<Vec<(String, Environment)>, ExploreError> {
+    let mut inputs: Vec<(String, Environment)> = Vec::new();
+    if let Some(dir) = &options.data {
+        let files = map_files(dir)?;
+        if files.is_empty() {
+            return Err(ExploreError::NoFiles(dir.clone()));
+        }
+        for f in files {
+            let name = f.file_stem().and_then(|s| s.to_str()).unwrap_or("map").to_string();
+            inputs.push((name, crate::io::read_environment(&f)?));
+        }
+    }
+    for i in 0..options.offices {
+        // Sizes and desks vary with the seed, as `bench explore` draws them.
+        let seed = options.seed.wrapping_add(i as u64);
+        let rooms = 2 + (seed.wrapping_mul(7) % 5) as usize;
+        let desks = (seed.wrapping_mul(13) % (3 * rooms as u64)) as usize;
+        let inst = crate::generate::office(rooms, desks, seed).map_err(|e| {
+            ExploreError::Load(crate::io::LoadError::Invalid {
+                file: format!("office-{i}"),
+                source: e,
+            })
+        })?;
+        // No start: the roomiest point of the configuration space, as on the maps.
+        let env = Environment::new(inst.domain);
+        inputs.push((format!("office-{i}"), env));
+    }
+    Ok(inputs)
+}
+
+/// One strategy on one map, as `stopscan explore` runs it.
+fn run_one(name: &str, env: &Environment, strategy: &str, options: &FloorsOptions) -> FloorRun {
+    let o = ExploreOptions {
+        strategy: strategy.to_string(),
+        cost: options.cost,
+        range: Some(options.range),
+        footprint: options.footprint.clone(),
+        limits: ReferenceLimits {
+            greedy_max_vertices: 0,
+            optimum_seconds: 0.0,
+            bounds_seconds: options.bounds_seconds,
+            ..ReferenceLimits::default()
+        },
+        seed: options.seed,
+        ..ExploreOptions::default()
+    };
+    let t0 = Instant::now();
+    let mut explored: Option<f64> = None;
+    let result = explore(name, env, None, &o, &mut |m: &str| {
+        if explored.is_none() && m.starts_with("offline") {
+            explored = Some(t0.elapsed().as_secs_f64());
+        }
+    });
+    let explore_seconds = explored.unwrap_or_else(|| t0.elapsed().as_secs_f64());
+    match result {
+        Ok(x) => {
+            let r = &x.record;
+            let robot = r.robot.as_ref();
+            FloorRun {
+                strategy: strategy.to_string(),
+                scans: r.metrics.totals.scans,
+                time: r.metrics.totals.time,
+                distance: r.metrics.totals.distance,
+                coverage: r.metrics.coverage,
+                coverage_of_reachable: robot
+                    .map_or(r.metrics.coverage, |b| b.coverage_of_reachable),
+                unreachable_area: robot.map_or(0.0, |b| b.unreachable_area),
+                time_lower: r.bounds.time_lower,
+                certified_ratio: r.bounds.certified_ratio,
+                explore_seconds,
+                error: x.failure.map(|f| f.to_string()),
+            }
+        }
+        Err(e) => FloorRun {
+            strategy: strategy.to_string(),
+            scans: 0,
+            time: 0.0,
+            distance: 0.0,
+            coverage: 0.0,
+            coverage_of_reachable: 0.0,
+            unreachable_area: 0.0,
+            time_lower: 0.0,
+            certified_ratio: None,
+            explore_seconds,
+            error: Some(e.to_string()),
+        },
+    }
+}
+
 /// The greedy reference of a map in its configuration space, from the default start.
 fn greedy_reference(env: &Environment, options: &FloorsOptions) -> Option<usize> {
     let world = crate::world::polygon::PolygonWorld::with_robot(
@@ -373,7 +384,8 @@ fn greedy_reference(env: &Environment, options: &FloorsOptions) -> Option<usize>
         env.default_start(),
     )
     .ok()?;
-    let start = world.reach().map_or_else(|| world.interior_point(), |r| r.start());
+    let start =
+        world.reach().map_or_else(|| world.interior_point(), crate::world::polygon::Reach::start);
     let g = crate::offline::polygon::reach::greedy(&world, start);
     Some(g.viewpoints.len())
 }
