@@ -9,6 +9,8 @@
 //! - `policy`: MDP policy images ([`write_policy_image`]);
 //! - `scene`: SVG scenes of a domain, its visibility regions and an exploration
 //!   ([`scene_svg`], [`exploration_svg`]);
+//! - `labels`: where an exploration's scan numbers go (none overlaps another, a marker or
+//!   the legend);
 //! - `roi`: the animated SVG replay of a grid mission ([`roi_svg`]);
 //! - `glyphs`: bitmap text drawn without clipped glyphs (plotters' font stack).
 
@@ -16,6 +18,7 @@ use std::path::PathBuf;
 
 mod chart;
 mod glyphs;
+mod labels;
 mod layout;
 mod policy;
 mod roi;
