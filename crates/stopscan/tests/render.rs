@@ -32,7 +32,7 @@ fn legends_never_cover_data_in_the_produced_charts() {
 mod exploration_picture {
     use stopscan::algorithm::visibility::VisibilityRegion;
     use stopscan::geometry::Domain;
-    use stopscan::render::exploration_svg;
+    use stopscan::render::{SceneExtras, exploration_svg};
 
     type Point = [f64; 2];
 
@@ -161,8 +161,8 @@ mod exploration_picture {
         }
         let domain = rectangle(100.0, 33.0, vec![square([20.0, 20.0], 1.0)]);
         let (regions, path) = scene(&points);
-        let svg = exploration_svg(&domain, &regions, &path);
-        assert_eq!(svg, exploration_svg(&domain, &regions, &path));
+        let svg = exploration_svg(&domain, &regions, &path, SceneExtras::default());
+        assert_eq!(svg, exploration_svg(&domain, &regions, &path, SceneExtras::default()));
         let p = read(&svg);
 
         assert_eq!(p.markers.len(), 400);
@@ -198,6 +198,30 @@ mod exploration_picture {
         }
         let count = format!("scan points, numbered where there is room ({drawn} of 400)");
         assert!(p.legend_words.contains(&count), "{:?}", p.legend_words);
+        assert!(!p.legend_words.iter().any(|w| w.contains("configuration space")));
+        assert!(!svg.contains("class=\"cspace\""));
+    }
+
+    /// The configuration space is drawn (every component's rings, beneath the path) and named
+    /// in the legend only when given.
+    #[test]
+    fn the_configuration_space_is_drawn_when_given() {
+        let domain = rectangle(20.0, 10.0, vec![square([10.0, 5.0], 1.0)]);
+        let (regions, path) = scene(&[[2.0, 2.0], [18.0, 8.0]]);
+        let cspace = vec![
+            vec![square([5.0, 5.0], 4.0), square([5.0, 5.0], 1.0)],
+            vec![square([15.0, 5.0], 4.0)],
+        ];
+        let with = SceneExtras { cspace: Some(&cspace) };
+        let svg = exploration_svg(&domain, &regions, &path, with);
+        assert_eq!(svg.matches("class=\"cspace\"").count(), 1);
+        let layer = &svg[svg.find("class=\"cspace\"").unwrap()..];
+        let d = attr(&layer[..layer.find("/>").unwrap()], "d").unwrap();
+        assert_eq!(d.matches('M').count(), 3, "three rings: {d}");
+        assert!(svg.find("class=\"cspace\"") < svg.find("class=\"path\""), "beneath the path");
+        assert!(read(&svg).legend_words.iter().any(|w| w == "configuration space"));
+        let none = exploration_svg(&domain, &regions, &path, SceneExtras::default());
+        assert!(!none.contains("cspace") && !none.contains("configuration space"));
     }
 
     /// A small scene with room everywhere numbers every scan, the one at the start included;
@@ -208,13 +232,13 @@ mod exploration_picture {
             (0..12).map(|i| [2.0 + f64::from(i % 4) * 5.0, 2.0 + f64::from(i / 4) * 3.5]).collect();
         let domain = rectangle(20.0, 10.0, vec![]);
         let (regions, path) = scene(&points);
-        let p = read(&exploration_svg(&domain, &regions, &path));
+        let p = read(&exploration_svg(&domain, &regions, &path, SceneExtras::default()));
         assert_eq!(p.labels.iter().map(|l| l.0).collect::<Vec<_>>(), (1..=12).collect::<Vec<_>>());
         assert!(p.legend_words.iter().any(|w| w.ends_with("(12 of 12)")));
 
         let corridor = rectangle(1.0, 50.0, vec![]);
         let (regions, path) = scene(&[[0.5, 1.0], [0.5, 25.0], [0.5, 49.0]]);
-        let svg = exploration_svg(&corridor, &regions, &path);
+        let svg = exploration_svg(&corridor, &regions, &path, SceneExtras::default());
         let p = read(&svg);
         assert!(p.legend[2] <= p.width && p.legend[3] <= p.height);
         assert!(p.width > 200.0, "widened for the legend: {}", p.width);

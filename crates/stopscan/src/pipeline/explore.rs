@@ -281,7 +281,12 @@ pub fn explore(
         &mut |stage| progress(&format!("offline: {stage}")),
     )?;
     let regions: Vec<_> = run.scans.iter().map(|s| s.region.clone()).collect();
-    let svg = crate::render::exploration_svg(&env.domain, &regions, &run.path);
+    let svg = crate::render::exploration_svg(
+        &env.domain,
+        &regions,
+        &run.path,
+        crate::render::SceneExtras::default(),
+    );
     let mut record = RunRecord::polygon(name, &world, &o.strategy, &o.cost, &run, &refs, o.seed)
         .in_frame(&frame);
     record.error = failure.as_ref().map(ToString::to_string);

@@ -96,6 +96,10 @@ const WALL_WIDTH: f64 = MAP_PX / 1000.0;
 const LABEL_CLEARANCE: f64 = MAP_PX / 1000.0;
 /// The opacity of the layer that tints the free space by the scan that first saw it.
 const TINT_OPACITY: f64 = 0.3;
+/// The configuration space: a crimson off the order ramp, a faint fill and a thin outline.
+const CSPACE_COLOUR: &str = "#c2185b";
+const CSPACE_FILL_OPACITY: f64 = 0.1;
+const CSPACE_STROKE_OPACITY: f64 = 0.7;
 const FREE_COLOUR: &str = "#ffffff";
 const OBSTACLE_COLOUR: &str = "#b8b8b8";
 const WALL_COLOUR: &str = "#222222";
@@ -190,6 +194,16 @@ impl MapFrame {
         }
         d
     }
+}
+
+/// Layers of an exploration picture that not every caller has; `Default` is none of them.
+#[derive(Debug, Clone, Copy, Default)]
+pub struct SceneExtras<'a> {
+    /// The robot's configuration space (where its reference point may stand), in the
+    /// domain's coordinates: its components, each a list of rings, the outer boundary first
+    /// and then its holes (either orientation). Drawn faintly over the tint and beneath the
+    /// path, and named in the legend, when given.
+    pub cspace: Option<&'a [Vec<Vec<Point>>]>,
 }
 
 /// A legend entry's swatch.
@@ -339,11 +353,21 @@ fn start_side() -> f64 {
 }
 
 /// The legend's entries, in the order drawn.
-fn legend_entries(scans: usize, numbered: usize, path: usize) -> Vec<Entry> {
+fn legend_entries(scans: usize, numbered: usize, path: usize, cspace: bool) -> Vec<Entry> {
     let mut e = vec![
         Entry::new(Swatch::Fill(FREE_COLOUR.into(), 1.0, Some((WALL_COLOUR, 1.0))), "free space"),
         Entry::new(Swatch::Fill(OBSTACLE_COLOUR.into(), 1.0, None), "obstacles and outside"),
     ];
+    if cspace {
+        e.push(Entry::new(
+            Swatch::Fill(
+                CSPACE_COLOUR.into(),
+                CSPACE_FILL_OPACITY,
+                Some((CSPACE_COLOUR, CSPACE_STROKE_OPACITY)),
+            ),
+            "configuration space",
+        ));
+    }
     if scans > 0 {
         e.push(Entry::new(
             Swatch::Fill(format!("url(#{RAMP_ID})"), TINT_OPACITY, None),
@@ -398,7 +422,8 @@ fn legend_layout(
 }
 
 /// An SVG of an exploration run: the domain (free space white, obstacles grey), the free space
-/// tinted by the first scan to see it, the path driven, the start (a square), every scan point coloured by its order (dark purple
+/// tinted by the first scan to see it, the configuration space faintly when `extras` has it,
+/// the path driven, the start (a square), every scan point coloured by its order (dark purple
 /// first to yellow last), numbered wherever its number fits without touching another number
 /// or marker, and a legend below the map saying all that.
 ///
@@ -407,7 +432,12 @@ fn legend_layout(
 /// `font·(0.64·digits + 0.2)` wide and spans `0.8·font` above the baseline to `0.15·font`
 /// below; the numbers go greedily in scan order (a uniform grid keeps it fast for thousands
 /// of scans). Deterministic: the same input gives the same bytes.
-pub fn exploration_svg(domain: &Domain, regions: &[VisibilityRegion], path: &[Point]) -> String {
+pub fn exploration_svg(
+    domain: &Domain,
+    regions: &[VisibilityRegion],
+    path: &[Point],
+    extras: SceneExtras<'_>,
+) -> String {
     let [lo, hi] = domain.bounds();
     let (w, h) = ((hi[0] - lo[0]).max(MIN_EXTENT), (hi[1] - lo[1]).max(MIN_EXTENT));
     let f = MapFrame { lo, hi, scale: MAP_PX / w.max(h) };
@@ -422,7 +452,7 @@ pub fn exploration_svg(domain: &Domain, regions: &[VisibilityRegion], path: &[Po
 
     // The legend is laid out for the widest count it can show, before the numbers are placed
     // (they stay out of it all the same).
-    let widest = legend_entries(n, n, path.len());
+    let widest = legend_entries(n, n, path.len(), extras.cspace.is_some());
     let max_width = widest
         .iter()
         .map(|e| e.width_em() * LEGEND_FONT)
@@ -432,13 +462,13 @@ pub fn exploration_svg(domain: &Domain, regions: &[VisibilityRegion], path: &[Po
     reserved.extend(start);
     let space = LabelSpace { area: map, font: LABEL_FONT, clearance: LABEL_CLEARANCE };
     let placed = labels::place_labels(&markers, &reserved, space);
-    let entries = legend_entries(n, placed.len(), path.len());
+    let entries = legend_entries(n, placed.len(), path.len(), extras.cspace.is_some());
     let (at, legend_box) = legend_layout(&entries, max_width, MARGIN, map.bottom + MARGIN);
     let (cw, ch) = (map.right.max(legend_box.right + MARGIN), legend_box.bottom + MARGIN);
 
     let mut out = String::new();
     header(&mut out, cw, ch);
-    draw_map(&mut out, &f, domain, regions, path);
+    draw_map(&mut out, &f, domain, regions, extras.cspace, path);
     draw_scans(&mut out, &markers, start, &placed);
     let _ = writeln!(out, r##"<g class="legend" font-size="{}" fill="#000">"##, Px(LEGEND_FONT));
     let _ = writeln!(
@@ -499,13 +529,14 @@ fn header(out: &mut String, width: f64, height: f64) {
     let _ = writeln!(out, r#"<rect width="100%" height="100%" fill="{FREE_COLOUR}"/>"#);
 }
 
-/// The map area: obstacles, free space, the tint of the first scan to see each place and the
-/// path.
+/// The map area: obstacles, free space, the tint of the first scan to see each place, the
+/// configuration space and the path.
 fn draw_map(
     out: &mut String,
     f: &MapFrame,
     domain: &Domain,
     regions: &[VisibilityRegion],
+    cspace: Option<&[Vec<Vec<Point>>]>,
     path: &[Point],
 ) {
     let map = f.area();
@@ -529,6 +560,14 @@ fn draw_map(
         let _ = writeln!(out, r#"<path d="{d}" fill="{}"/>"#, order_colour(k, regions.len()));
     }
     out.push_str("</g>\n");
+    if let Some(cspace) = cspace {
+        let _ = writeln!(
+            out,
+            r#"<path class="cspace" d="{}" fill="{CSPACE_COLOUR}" fill-opacity="{CSPACE_FILL_OPACITY}" fill-rule="evenodd" stroke="{CSPACE_COLOUR}" stroke-opacity="{CSPACE_STROKE_OPACITY}" stroke-width="{}"/>"#,
+            f.rings(cspace.iter().flatten()),
+            Px(WALL_WIDTH)
+        );
+    }
     if path.len() > 1 {
         let mut pts = String::new();
         for (i, &p) in path.iter().enumerate() {
