@@ -381,7 +381,14 @@ pub fn explore(
         refs.greedy = Some(crate::offline::polygon::reach::greedy(&world, start));
     }
     let regions: Vec<_> = run.scans.iter().map(|s| s.region.clone()).collect();
-    let svg = crate::render::exploration_svg(&env.domain, &regions, &run.path);
+    let cspace: Option<Vec<Vec<Vec<Point>>>> =
+        world.reach().map(|r| vec![r.domain().rings().to_vec()]);
+    let svg = crate::render::exploration_svg(
+        &env.domain,
+        &regions,
+        &run.path,
+        crate::render::SceneExtras { cspace: cspace.as_deref() },
+    );
     let mut record = RunRecord::polygon(name, &world, &o.strategy, &o.cost, &run, &refs, o.seed);
     record.sensor = SensorInfo::of(&setup.sensor, &strategy.skipped());
     if let Some(reach) = world.reach() {

@@ -8,7 +8,9 @@
 //! - `layout`: axis [`ticks`] and the legend's corner ([`legend_corner`]), in pixels;
 //! - `policy`: MDP policy images ([`write_policy_image`]);
 //! - `scene`: SVG scenes of a domain, its visibility regions and an exploration
-//!   ([`scene_svg`], [`exploration_svg`]);
+//!   ([`scene_svg`], [`exploration_svg`] with its optional layers in [`SceneExtras`]);
+//! - `labels`: where an exploration's scan numbers go (none overlaps another, a marker or
+//!   the legend);
 //! - `roi`: the animated SVG replay of a grid mission ([`roi_svg`]);
 //! - `glyphs`: bitmap text drawn without clipped glyphs (plotters' font stack).
 
@@ -16,6 +18,7 @@ use std::path::PathBuf;
 
 mod chart;
 mod glyphs;
+mod labels;
 mod layout;
 mod policy;
 mod roi;
@@ -27,7 +30,7 @@ pub use layout::{
 };
 pub use policy::write_policy_image;
 pub use roi::roi_svg;
-pub use scene::{exploration_svg, scene_svg};
+pub use scene::{SceneExtras, exploration_svg, scene_svg};
 
 /// Why a picture could not be written.
 #[derive(Debug, thiserror::Error)]
