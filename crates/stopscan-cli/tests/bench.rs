@@ -16,3 +16,50 @@ fn bench_prints_the_contract() {
     let g = json(&["bench", "mdp", "--solver", "general", "--n", "30", "--repeat", "1"]);
     assert_eq!(g["name"], "mdp2-policy-iteration");
 }
+
+/// `bench floors` on the repository's maps and one office: every requested strategy per map,
+/// totals that add up, and a chart.
+#[test]
+fn bench_floors_on_small_inputs() {
+    let dir = common::temp("floors");
+    std::fs::create_dir_all(&dir).unwrap();
+    let maps = dir.join("maps");
+    std::fs::create_dir_all(&maps).unwrap();
+    for f in ["turtlebot3_world.yaml", "turtlebot3_world.pgm"] {
+        std::fs::copy(common::fixture(&format!("ros-maps/{f}")), maps.join(f)).unwrap();
+    }
+    let chart = dir.join("floors.svg");
+    let r = common::json(&[
+        "bench",
+        "floors",
+        "--data",
+        maps.to_str().unwrap(),
+        "--offices",
+        "1",
+        "--strategies",
+        "depth_first,cost_aware",
+        "--chart",
+        chart.to_str().unwrap(),
+    ]);
+    let m = r["maps"].as_array().unwrap();
+    assert_eq!(m.len(), 2);
+    assert_eq!(m[0]["name"], "turtlebot3_world");
+    for map in m {
+        assert_eq!(map["runs"].as_array().unwrap().len(), 2);
+    }
+    for t in r["totals"].as_array().unwrap() {
+        let s = t["strategy"].as_str().unwrap();
+        let sum: f64 = m
+            .iter()
+            .flat_map(|x| x["runs"].as_array().unwrap())
+            .filter(|x| x["strategy"] == s)
+            .map(|x| x["time"].as_f64().unwrap())
+            .sum();
+        assert!((t["time"].as_f64().unwrap() - sum).abs() < 1e-6);
+    }
+    assert!(chart.exists() && chart.with_extension("png").exists());
+    common::fails(
+        &["bench", "floors", "--data", "/no/such/folder"],
+        &["--data", "/no/such/folder", "no such folder"],
+    );
+}

@@ -170,3 +170,58 @@ fn a_bad_file_does_not_end_a_sweep() {
         &["needs --range"],
     );
 }
+
+/// A robot with a footprint on a real map: the record states the footprint, the sensor and
+/// its window rule, and the unreachable area; the path keeps the radius from the walls
+/// (checked by the simulator against the configuration space).
+#[test]
+fn explore_with_a_footprint_and_a_window_rule() {
+    let map = common::fixture("ros-maps/turtlebot3_world.yaml");
+    let r = json(&[
+        "explore",
+        "--env",
+        &map,
+        "--robot-radius",
+        "0.2",
+        "--beams",
+        "720",
+        "--range",
+        "20",
+        "--strategy",
+        "cost_aware",
+        "--optimum-seconds",
+        "0",
+        "--bounds-seconds",
+        "1",
+    ]);
+    assert!(r.get("error").is_none(), "{r}");
+    let robot = &r["robot"];
+    assert_eq!(robot["footprint"]["kind"], "disc");
+    assert!(f(robot, "clearance") > 0.2);
+    let (vis, lost) = (f(robot, "visible_from_reachable_area"), f(robot, "unreachable_area"));
+    assert!(vis > 0.0 && lost >= 0.0);
+    assert!(f(robot, "coverage_of_reachable") > 0.9, "{robot}");
+    // min_window defaults to the robot's width (the map's two cells are 0.1 m).
+    assert_eq!(f(&r["sensor"], "min_window"), 0.4);
+    assert_eq!(r["sensor"]["beams"], 720);
+    assert!(r["sensor"]["window_rule"].as_str().unwrap().contains("d·2π/720"));
+    // Without a footprint on a polygon, nothing is added to the record.
+    let plain = json(&["explore", "--env", &common::fixture("office.geojson")]);
+    assert!(plain.get("robot").is_none());
+    assert!(plain["sensor"].get("window_rule").is_none());
+}
+
+#[test]
+fn footprint_flags_are_checked() {
+    let map = common::fixture("office.geojson");
+    fails(&["explore", "--env", &map, "--robot-radius", "-1"], &["--robot-radius", "-1"]);
+    fails(
+        &["explore", "--env", &map, "--footprint", "[[0,0],[1,0]]"],
+        &["--footprint", "at least 3"],
+    );
+    fails(&["explore", "--env", &map, "--footprint", "square"], &["--footprint", "[[x, y]"]);
+    fails(&["explore", "--env", &map, "--min-window", "-2"], &["--min-window", "-2"]);
+    fails(&["explore", "--env", &map, "--beams", "0"], &["--beams"]);
+    // A robot too big for the start the file gives.
+    fails(&["explore", "--env", &map, "--robot-radius", "3"], &["footprint", "fit"]);
+}
