@@ -17,7 +17,11 @@ pub(crate) fn import(a: &ImportArgs, g: &Global) -> anyhow::Result<()> {
         .and_then(|e| e.to_str())
         .is_some_and(|e| e.eq_ignore_ascii_case("yaml") || e.eq_ignore_ascii_case("yml"));
     let env = if is_map {
-        let opts = stopscan::io::ros_map::RosMapOptions { start, min_speck_area: a.min_speck_area };
+        let opts = stopscan::io::ros_map::RosMapOptions {
+            start,
+            min_speck_area: a.min_speck_area,
+            ..stopscan::io::ros_map::RosMapOptions::default()
+        };
         stopscan::io::ros_map::read(&a.file, &opts)?
     } else {
         stopscan::io::read_environment(&a.file)?

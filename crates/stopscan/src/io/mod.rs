@@ -49,6 +49,16 @@ pub enum LoadError {
         /// The problem, with a cell where it is.
         source: crate::world::grid::InvalidRoi,
     },
+    /// A loader's option is out of its range (named as the option's field), whatever the file.
+    #[error("{name} must {requirement}, got {}", crate::kernel::Num(*.value))]
+    InvalidOption {
+        /// The option.
+        name: &'static str,
+        /// What it must be.
+        requirement: &'static str,
+        /// What it was.
+        value: f64,
+    },
     /// The text parses but the environment is invalid.
     #[error("{file}: {source}")]
     Invalid {
