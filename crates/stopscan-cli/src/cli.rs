@@ -357,6 +357,11 @@ pub(crate) struct ExploreArgs {
     /// Write every move and scan as it happens, one JSON object per line (flushed per event).
     #[arg(long)]
     pub(crate) trace: Option<PathBuf>,
+    /// ROS maps: simplify the boundary traced along cell edges, preserving its topology, by
+    /// moving it at most TOL metres (default 1.5 cells; 0 keeps the traced boundary). Other
+    /// formats are read as they are.
+    #[arg(long, value_name = "TOL", allow_hyphen_values = true)]
+    pub(crate) simplify: Option<f64>,
 }
 
 #[derive(Debug, Args)]

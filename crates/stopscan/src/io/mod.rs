@@ -150,12 +150,27 @@ impl Environment {
 /// # Errors
 /// [`LoadError`] naming the file, the place and the problem.
 pub fn read_environment(path: &std::path::Path) -> Result<Environment, LoadError> {
-    read_in_input_frame(path)?
+    read_environment_with(path, &ros_map::RosMapOptions::default())
+}
+
+/// Reads an environment file as [`read_environment`] does, a ROS map with `map` (its start,
+/// speck area and simplification, [`ros_map::RosMapOptions`]); other formats ignore `map`.
+///
+/// # Errors
+/// [`LoadError`] naming the file, the place and the problem.
+pub fn read_environment_with(
+    path: &std::path::Path,
+    map: &ros_map::RosMapOptions,
+) -> Result<Environment, LoadError> {
+    read_in_input_frame(path, map)?
         .localised()
         .map_err(|source| LoadError::Invalid { file: path.display().to_string(), source })
 }
 
-fn read_in_input_frame(path: &std::path::Path) -> Result<Environment, LoadError> {
+fn read_in_input_frame(
+    path: &std::path::Path,
+    map: &ros_map::RosMapOptions,
+) -> Result<Environment, LoadError> {
     let bytes = std::fs::read(path)
         .map_err(|source| LoadError::Io { file: path.display().to_string(), source })?;
     let text = String::from_utf8(bytes).map_err(|_| LoadError::Syntax {
@@ -168,7 +183,7 @@ fn read_in_input_frame(path: &std::path::Path) -> Result<Environment, LoadError>
     let file = path.display().to_string();
     let ext = path.extension().and_then(|e| e.to_str()).map(str::to_ascii_lowercase);
     if matches!(ext.as_deref(), Some("yaml" | "yml")) {
-        return ros_map::read(path, &ros_map::RosMapOptions::default());
+        return ros_map::read(path, map);
     }
     if first.starts_with("OUTER") {
         let e = bench_format::parse(&text, &file)?;
