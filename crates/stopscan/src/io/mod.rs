@@ -2,7 +2,7 @@
 //! problem, and never panic.
 //!
 //! - [`text_formats`]: GeoJSON, WKT and `.pol` (and GeoJSON out);
-//! - [`ros_map`]: ROS `map_server` occupancy grids, traced into polygons;
+//! - [`ros_map`]: ROS `map_server` occupancy grids, traced into polygons and simplified;
 //! - [`bench_format`]: the visibility benchmark format;
 //! - [`grid`]: region-of-interest files (text grid, mask, polygon);
 //! - [`atomic`]: writing files whole or not at all, and the output-target checks;

@@ -29,6 +29,10 @@
 //! the rounding of the final coordinates. The start, which is not a corner, is tested in
 //! metres, where the result lives.
 //!
+//! Not geo's `simplify_vw_preserve`: its tolerance is a triangle's area, which bounds no
+//! distance, its documentation warns that it may move a hole outside its shell and does not
+//! guarantee a valid result, and geo would bring a second i_overlay (4.5) and rstar.
+//!
 //! Vertices are only removed, never moved or added: the result's vertices are traced vertices.
 //! Ties in cost go to the lower vertex index, so the result is deterministic.
 //!
