@@ -377,6 +377,11 @@ pub(crate) struct ExploreArgs {
     /// Write every move and scan as it happens, one JSON object per line (flushed per event).
     #[arg(long)]
     pub(crate) trace: Option<PathBuf>,
+    /// ROS maps: simplify the boundary traced along cell edges, preserving its topology, by
+    /// moving it at most TOL metres (default 1.5 cells; 0 keeps the traced boundary). Other
+    /// formats are read as they are.
+    #[arg(long, value_name = "TOL", allow_hyphen_values = true)]
+    pub(crate) simplify: Option<f64>,
 }
 
 #[derive(Debug, Args)]
@@ -514,6 +519,10 @@ pub(crate) struct ImportArgs {
     /// ROS maps: enclosed obstacle specks below this area (square metres) are dropped.
     #[arg(long, allow_negative_numbers = true, default_value_t = 0.05)]
     pub(crate) min_speck_area: f64,
+    /// ROS maps: simplify the boundary traced along cell edges, preserving its topology, by
+    /// moving it at most TOL metres (default 1.5 cells; 0 keeps the traced boundary).
+    #[arg(long, value_name = "TOL", allow_hyphen_values = true)]
+    pub(crate) simplify: Option<f64>,
 }
 
 #[derive(Debug, Args)]

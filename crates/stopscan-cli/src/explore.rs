@@ -62,6 +62,7 @@ fn options(a: &ExploreArgs, g: &Global) -> anyhow::Result<ExploreOptions> {
         },
         seed: g.seed,
         trace: a.trace.clone(),
+        simplify: a.simplify,
     })
 }
 

@@ -171,6 +171,76 @@ fn a_bad_file_does_not_end_a_sweep() {
     );
 }
 
+/// `--simplify` reaches the ROS map loader, for one file and for a sweep; bad values name
+/// the flag.
+#[test]
+fn explore_simplifies_ros_maps_as_map_import_does() {
+    let dir = temp("simplify");
+    std::fs::create_dir_all(&dir).unwrap();
+    let map = common::fixture("ros-maps/turtlebot3_world.yaml");
+    let out = dir.join("run.json");
+    let quick = ["--optimum-seconds", "0", "--bounds-seconds", "0", "--greedy-max-vertices", "0"];
+    let vertices = |tol: Option<&str>| {
+        let geo = dir.join("m.geojson");
+        let mut import = vec!["map", "import", &map, "-o", geo.to_str().unwrap()];
+        let mut run = vec!["explore", "--env", &map, "--out", out.to_str().unwrap()];
+        run.extend(quick);
+        if let Some(t) = tol {
+            import.extend(["--simplify", t]);
+            run.extend(["--simplify", t]);
+        }
+        let (i, r) = (json(&import), json(&run));
+        assert_eq!(r["environment"]["vertices"], i["vertices"], "{tol:?}");
+        assert_eq!(r["metrics"]["coverage"], 1.0, "{tol:?}");
+        i["vertices"].as_u64().unwrap()
+    };
+    let (default, traced, wide) = (vertices(None), vertices(Some("0")), vertices(Some("0.15")));
+    assert!(wide < default && default < traced, "{wide} < {default} < {traced}");
+    // A start a hair from a wall stays inside the free space (the loader protects it).
+    let r = json(&[
+        "explore",
+        "--env",
+        &map,
+        "--out",
+        out.to_str().unwrap(),
+        "--start",
+        "-2,-0.5",
+        "--simplify",
+        "0.2",
+        "--optimum-seconds",
+        "0",
+        "--bounds-seconds",
+        "0",
+    ]);
+    assert_eq!(r["robots"][0]["path"][0], serde_json::json!([-2.0, -0.5]));
+    // A sweep reads its maps with the flag too.
+    let sweep_dir = dir.join("maps");
+    std::fs::create_dir_all(&sweep_dir).unwrap();
+    for f in ["turtlebot3_world.yaml", "turtlebot3_world.pgm"] {
+        std::fs::copy(common::fixture(&format!("ros-maps/{f}")), sweep_dir.join(f)).unwrap();
+    }
+    let reflex = |tol: &str| {
+        let csv = dir.join(format!("sweep-{tol}.csv"));
+        let mut args =
+            vec!["explore", "--env", sweep_dir.to_str().unwrap(), "--out", csv.to_str().unwrap()];
+        args.extend(["--simplify", tol, "--bounds-seconds", "0"]);
+        let o = stopscan(&args);
+        assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+        std::fs::read_to_string(csv).unwrap()
+    };
+    assert_ne!(reflex("0"), reflex("0.15"));
+    for bad in ["-1", "nan", "inf", "-inf"] {
+        fails(
+            &["explore", "--env", &map, "--simplify", bad],
+            &["--simplify must be a finite non-negative number of metres"],
+        );
+        fails(
+            &["explore", "--env", sweep_dir.to_str().unwrap(), "--simplify", bad],
+            &["--simplify must be a finite non-negative number of metres"],
+        );
+    }
+}
+
 /// A robot with a footprint on a real map: the record states the footprint, the sensor and
 /// its window rule, and the unreachable area; the path keeps the radius from the walls
 /// (checked by the simulator against the configuration space).

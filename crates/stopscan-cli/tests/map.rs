@@ -6,7 +6,7 @@ use std::path::PathBuf;
 
 use serde_json::Value;
 
-use common::{f, json, stopscan, temp};
+use common::{f, fails, json, stopscan, temp};
 
 #[test]
 fn map_import_then_visibility_on_the_geojson() {
@@ -36,4 +36,62 @@ fn map_import_then_visibility_on_the_geojson() {
     let bad = stopscan(&["map", "import", "/no/such.yaml", "-o", out.to_str().unwrap()]);
     assert_eq!(bad.status.code(), Some(2));
     assert!(String::from_utf8_lossy(&bad.stderr).contains("/no/such.yaml"));
+}
+
+#[test]
+fn map_import_simplifies_within_the_tolerance_and_reports_the_area_change() {
+    let dir = temp("simplify");
+    std::fs::create_dir_all(&dir).unwrap();
+    let map = common::fixture("ros-maps/turtlebot3_world.yaml");
+    let out = dir.join("tb3.geojson");
+    let import = |extra: &[&str]| {
+        let mut args = vec!["map", "import", &map, "-o", out.to_str().unwrap()];
+        args.extend(extra);
+        json(&args)
+    };
+    // The default: 1.5 cells of 5 cm.
+    let v = import(&[]);
+    let s = &v["simplification"];
+    assert_eq!(f(s, "tolerance"), 1.5 * 0.05);
+    assert_eq!(f(s, "tolerance_used"), f(s, "tolerance"));
+    assert_eq!(f(s, "resolution"), 0.05);
+    assert_eq!(s["vertices"], v["vertices"]);
+    assert_eq!(s["reflex_vertices"], v["reflex_vertices"]);
+    assert_eq!(f(s, "area"), f(&v, "free_area"));
+    let (before, after) = (s["traced_vertices"].as_u64().unwrap(), s["vertices"].as_u64().unwrap());
+    assert!(after * 3 < before, "{before} -> {after} vertices");
+    let change = (f(s, "area") - f(s, "traced_area")).abs();
+    assert!((f(s, "area_change") - change).abs() < 1e-12);
+    assert!((f(s, "relative_area_change") - change / f(s, "traced_area")).abs() < 1e-15);
+    assert!(f(s, "relative_area_change") < 0.01);
+    // 0: the traced boundary itself.
+    let v = import(&["--simplify", "0"]);
+    let s = &v["simplification"];
+    assert_eq!(s["vertices"], s["traced_vertices"]);
+    assert_eq!(f(s, "area_change"), 0.0);
+    assert_eq!(f(s, "traced_area"), f(&v, "free_area"));
+    // A wider tolerance removes more.
+    let v = import(&["--simplify", "0.15"]);
+    assert!(v["simplification"]["vertices"].as_u64().unwrap() < after);
+    // The table says it on a line of its own.
+    let t = stopscan(&["map", "import", &map, "-o", out.to_str().unwrap()]);
+    let text = String::from_utf8_lossy(&t.stdout);
+    assert!(text.contains("simplified within 0.075 m (1.50 cells of 0.050 m)"), "{text}");
+    assert!(text.contains("area 19.737 -> "), "{text}");
+    // Bad values name the flag.
+    for bad in ["-0.1", "nan", "inf", "-inf"] {
+        fails(
+            &["map", "import", &map, "-o", out.to_str().unwrap(), "--simplify", bad],
+            &["--simplify must be a finite non-negative number of metres"],
+        );
+    }
+    // Other formats are read as they are: no simplification to report.
+    let v = json(&[
+        "map",
+        "import",
+        out.to_str().unwrap(),
+        "-o",
+        dir.join("again.geojson").to_str().unwrap(),
+    ]);
+    assert!(v.get("simplification").is_none(), "{v}");
 }

@@ -33,8 +33,8 @@ fn turtlebot_world_becomes_a_valid_domain_and_round_trips() {
     assert!(d.holes().len() >= 5, "the pillars are holes: {}", d.holes().len());
     assert!(d.area() > 10.0 && d.area() < 40.0, "area {}", d.area());
     assert_eq!(d.locate(start), Location::Interior);
-    // The simplification stays within one cell of the traced boundary: every vertex lies on
-    // the 5 cm grid of the map.
+    // The simplification only drops traced vertices: every vertex lies on the 5 cm grid of
+    // the map.
     for p in d.rings().iter().flatten() {
         for v in p {
             let k = v / 0.05;
@@ -110,14 +110,23 @@ fn malformed_maps_are_clear_errors() {
     px[12] = 0;
     write(&dir, "dot.pgm", &pgm(5, 5, &px));
     let p = write(&dir, "dot.yaml", y("dot.pgm", "").as_bytes());
-    let e = read(&p, &RosMapOptions { start: Some([0.125, 0.125]), min_speck_area: 0.0 })
-        .unwrap_err()
-        .to_string();
+    let e = read(
+        &p,
+        &RosMapOptions {
+            start: Some([0.125, 0.125]),
+            min_speck_area: 0.0,
+            ..RosMapOptions::default()
+        },
+    )
+    .unwrap_err()
+    .to_string();
     assert!(e.contains("not in a free cell"), "{e}");
     // The same dot is a speck below the default area: it is dropped.
     let env = read(&p, &RosMapOptions::default()).unwrap();
     assert!(env.domain.holes().is_empty());
-    let env = read(&p, &RosMapOptions { start: None, min_speck_area: 0.0 }).unwrap();
+    let env =
+        read(&p, &RosMapOptions { start: None, min_speck_area: 0.0, ..RosMapOptions::default() })
+            .unwrap();
     assert_eq!(env.domain.holes().len(), 1);
 }
 
@@ -136,7 +145,9 @@ fn diagonal_pinches_do_not_make_touching_rings() {
         "p.yaml",
         b"image: p.pgm\nresolution: 1\norigin: [0, 0, 0]\nnegate: 0\nfree_thresh: 0.2\n",
     );
-    let env = read(&p, &RosMapOptions { start: None, min_speck_area: 0.0 }).unwrap();
+    let env =
+        read(&p, &RosMapOptions { start: None, min_speck_area: 0.0, ..RosMapOptions::default() })
+            .unwrap();
     assert_eq!(
         env.domain.holes().len(),
         1,
@@ -212,15 +223,16 @@ fn png_maps_load_like_pgm() {
     };
     let a = read(
         &write(&dir, "a.yaml", yaml("m.png").as_bytes()),
-        &RosMapOptions { start: None, min_speck_area: 0.0 },
+        &RosMapOptions { start: None, min_speck_area: 0.0, simplify: Some(0.0) },
     )
     .unwrap();
     let b = read(
         &write(&dir, "b.yaml", yaml("m.pgm").as_bytes()),
-        &RosMapOptions { start: None, min_speck_area: 0.0 },
+        &RosMapOptions { start: None, min_speck_area: 0.0, simplify: Some(0.0) },
     )
     .unwrap();
     assert_eq!(a.domain, b.domain);
     assert_eq!(a.domain.holes().len(), 1);
+    // Traced, not simplified: the room less its pillar, cell for cell.
     assert!((a.domain.area() - (4.0 * 3.0 - 1.0)).abs() < 1e-12);
 }

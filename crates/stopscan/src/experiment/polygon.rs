@@ -4,6 +4,7 @@
 use super::{ExperimentError, Reproduction, Row};
 use crate::algorithm::region::Region;
 use crate::generate::{spiral, star};
+use crate::io::ros_map::RosMapOptions;
 use crate::kernel::tolerance::AREA_REL;
 use crate::offline::polygon::References;
 use crate::protocol::{CostModel, RunTotals};
@@ -144,7 +145,7 @@ fn views_benchmarks(data: &std::path::Path) -> Result<Reproduction, ExperimentEr
     }
     let mut inputs: Vec<SweepInput> = Vec::new();
     for f in &files {
-        let (env, start) = crate::io::sweep::read_with_start(f)?;
+        let (env, start) = crate::io::sweep::read_with_start(f, &RosMapOptions::default())?;
         let name = f.strip_prefix(data).unwrap_or(f).display().to_string();
         inputs.push(SweepInput { name, domain: env.domain, start });
     }

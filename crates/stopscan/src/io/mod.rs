@@ -2,7 +2,7 @@
 //! problem, and never panic.
 //!
 //! - [`text_formats`]: GeoJSON, WKT and `.pol` (and GeoJSON out);
-//! - [`ros_map`]: ROS `map_server` occupancy grids, traced into polygons;
+//! - [`ros_map`]: ROS `map_server` occupancy grids, traced into polygons and simplified;
 //! - [`bench_format`]: the visibility benchmark format;
 //! - [`grid`]: region-of-interest files (text grid, mask, polygon);
 //! - [`atomic`]: writing files whole or not at all, and the output-target checks;
@@ -48,6 +48,16 @@ pub enum LoadError {
         file: String,
         /// The problem, with a cell where it is.
         source: crate::world::grid::InvalidRoi,
+    },
+    /// A loader's option is out of its range (named as the option's field), whatever the file.
+    #[error("{name} must {requirement}, got {}", crate::kernel::Num(*.value))]
+    InvalidOption {
+        /// The option.
+        name: &'static str,
+        /// What it must be.
+        requirement: &'static str,
+        /// What it was.
+        value: f64,
     },
     /// The text parses but the environment is invalid.
     #[error("{file}: {source}")]
@@ -142,12 +152,27 @@ impl Environment {
 /// # Errors
 /// [`LoadError`] naming the file, the place and the problem.
 pub fn read_environment(path: &std::path::Path) -> Result<Environment, LoadError> {
-    read_in_input_frame(path)?
+    read_environment_with(path, &ros_map::RosMapOptions::default())
+}
+
+/// Reads an environment file as [`read_environment`] does, a ROS map with `map` (its start,
+/// speck area and simplification, [`ros_map::RosMapOptions`]); other formats ignore `map`.
+///
+/// # Errors
+/// [`LoadError`] naming the file, the place and the problem.
+pub fn read_environment_with(
+    path: &std::path::Path,
+    map: &ros_map::RosMapOptions,
+) -> Result<Environment, LoadError> {
+    read_in_input_frame(path, map)?
         .localised()
         .map_err(|source| LoadError::Invalid { file: path.display().to_string(), source })
 }
 
-fn read_in_input_frame(path: &std::path::Path) -> Result<Environment, LoadError> {
+fn read_in_input_frame(
+    path: &std::path::Path,
+    map: &ros_map::RosMapOptions,
+) -> Result<Environment, LoadError> {
     let bytes = std::fs::read(path)
         .map_err(|source| LoadError::Io { file: path.display().to_string(), source })?;
     let text = String::from_utf8(bytes).map_err(|_| LoadError::Syntax {
@@ -160,7 +185,7 @@ fn read_in_input_frame(path: &std::path::Path) -> Result<Environment, LoadError>
     let file = path.display().to_string();
     let ext = path.extension().and_then(|e| e.to_str()).map(str::to_ascii_lowercase);
     if matches!(ext.as_deref(), Some("yaml" | "yml")) {
-        return ros_map::read(path, &ros_map::RosMapOptions::default());
+        return ros_map::read(path, map);
     }
     if first.starts_with("OUTER") {
         let e = bench_format::parse(&text, &file)?;

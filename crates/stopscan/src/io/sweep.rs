@@ -2,7 +2,8 @@
 
 use std::path::Path;
 
-use super::{Environment, LoadError, read_environment};
+use super::ros_map::RosMapOptions;
+use super::{Environment, LoadError, read_environment_with};
 use crate::algorithm::visibility::VisibilityError;
 use crate::kernel::Point;
 use crate::world::polygon::PolygonWorld;
@@ -11,7 +12,7 @@ use crate::world::polygon::PolygonWorld;
 #[derive(Debug, thiserror::Error)]
 #[non_exhaustive]
 pub enum SweepLoadError {
-    /// The file does not load ([`read_environment`]).
+    /// The file does not load ([`read_environment_with`]).
     #[error(transparent)]
     Load(#[from] LoadError),
     /// Its free space could not be triangulated for the default start.
@@ -32,14 +33,17 @@ pub fn default_start(env: &Environment) -> Result<Point, VisibilityError> {
     }
 }
 
-/// Reads one environment of a sweep and its [`default_start`]. Its free space is
-/// triangulated whether or not the file gives a start, so that a file that cannot be explored
-/// fails here, before the sweep.
+/// Reads one environment of a sweep (a ROS map with `map`, see [`read_environment_with`]) and
+/// its [`default_start`]. Its free space is triangulated whether or not the file gives a
+/// start, so that a file that cannot be explored fails here, before the sweep.
 ///
 /// # Errors
 /// [`SweepLoadError`]: the file does not load, or its free space cannot be triangulated.
-pub fn read_with_start(path: &Path) -> Result<(Environment, Point), SweepLoadError> {
-    let env = read_environment(path)?;
+pub fn read_with_start(
+    path: &Path,
+    map: &RosMapOptions,
+) -> Result<(Environment, Point), SweepLoadError> {
+    let env = read_environment_with(path, map)?;
     let world = PolygonWorld::new(env.domain.clone())?;
     let start = env.default_start().unwrap_or_else(|| world.interior_point());
     Ok((env, start))

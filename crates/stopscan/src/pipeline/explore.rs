@@ -13,6 +13,7 @@ use std::path::{Path, PathBuf};
 
 use super::{InvalidParameter, Progress};
 use crate::algorithm::visibility::VisibilityError;
+use crate::io::ros_map::RosMapOptions;
 use crate::io::{Environment, LoadError};
 use crate::kernel::{Num, Point};
 use crate::offline::polygon::{OfflineError, ReferenceLimits};
@@ -55,11 +56,15 @@ pub struct ExploreOptions {
     pub seed: u64,
     /// Where to stream the event trace (JSON lines), if anywhere.
     pub trace: Option<PathBuf>,
+    /// ROS maps: the boundary simplification tolerance in metres
+    /// ([`crate::io::ros_map::RosMapOptions::simplify`]; `None`: the loader's default, 1.5
+    /// cells). Other formats are read as they are.
+    pub simplify: Option<f64>,
 }
 
 impl Default for ExploreOptions {
     /// The paper's algorithm, the default cost model, an unlimited sensor, the default
-    /// budgets, seed 0, no trace.
+    /// budgets, seed 0, no trace, the default map simplification.
     fn default() -> Self {
         Self {
             strategy: "depth_first".into(),
@@ -72,6 +77,7 @@ impl Default for ExploreOptions {
             limits: ReferenceLimits::default(),
             seed: 0,
             trace: None,
+            simplify: None,
         }
     }
 }
@@ -210,6 +216,24 @@ pub fn check_range(strategy: &str, range: Option<f64>) -> Result<(), ExploreErro
     Ok(())
 }
 
+/// A map simplification tolerance, if given, is a finite non-negative number of metres.
+///
+/// # Errors
+/// [`ExploreError::Parameter`] (`simplify`).
+pub fn check_simplify(simplify: Option<f64>) -> Result<(), ExploreError> {
+    if let Some(t) = simplify
+        && !(t.is_finite() && t >= 0.0)
+    {
+        return Err(InvalidParameter::new(
+            "simplify",
+            "be a finite non-negative number of metres",
+            &Num(t),
+        )
+        .into());
+    }
+    Ok(())
+}
+
 /// The reference budgets are between 0 and [`MAX_BUDGET_SECONDS`].
 ///
 /// # Errors
@@ -229,7 +253,9 @@ pub fn check_budgets(limits: &ReferenceLimits) -> Result<(), ExploreError> {
 
 /// Explores the environment in `path` (any format [`crate::io::read_environment`] reads),
 /// from `start` (input coordinates) or the file's default start
-/// ([`crate::io::sweep::default_start`]). The run is named after the file's stem.
+/// ([`crate::io::sweep::default_start`]). The run is named after the file's stem. A ROS map
+/// is read with `start` (the free region containing it is kept, and the simplification
+/// keeps it inside) and `options.simplify`.
 ///
 /// # Errors
 /// [`ExploreError`]: bad options, a file that does not load, a start outside the free space,
@@ -243,7 +269,9 @@ pub fn explore_file(
 ) -> Result<Exploration, ExploreError> {
     check_range(&options.strategy, options.range)?;
     options.check_sensor()?;
-    let env = crate::io::read_environment(path)?;
+    check_simplify(options.simplify)?;
+    let map = RosMapOptions { start, simplify: options.simplify, ..RosMapOptions::default() };
+    let env = crate::io::read_environment_with(path, &map)?;
     let start = start.map(|s| env.frame.to_local(s));
     let name = path.file_stem().and_then(|s| s.to_str()).unwrap_or("environment");
     explore(name, &env, start, options, progress)
@@ -456,6 +484,14 @@ mod tests {
         let limits = ReferenceLimits { bounds_seconds: f64::NAN, ..ReferenceLimits::default() };
         let e = check_budgets(&limits).unwrap_err().to_string();
         assert_eq!(e, "bounds_seconds must be between 0 and 86400 seconds, got NaN");
+        for bad in [-0.5, f64::NAN, f64::INFINITY] {
+            let o = ExploreOptions { simplify: Some(bad), ..ExploreOptions::default() };
+            let e = explore_file(Path::new("/no/such/file"), None, &o, &mut |_| {}).unwrap_err();
+            assert!(
+                e.to_string().starts_with("simplify must be a finite non-negative number"),
+                "{e}"
+            );
+        }
     }
 
     #[test]

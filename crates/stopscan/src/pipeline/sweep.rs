@@ -4,8 +4,9 @@
 
 use std::path::{Path, PathBuf};
 
-use super::explore::{ExploreError, ExploreOptions, check_budgets, check_range};
+use super::explore::{ExploreError, ExploreOptions, check_budgets, check_range, check_simplify};
 use crate::experiment::polygon::{SweepInput, SweepRow};
+use crate::io::ros_map::RosMapOptions;
 use crate::strategy::UnknownStrategy;
 use crate::strategy::polygon::REGISTRY;
 
@@ -84,7 +85,8 @@ fn file_name(path: &Path) -> String {
 /// Explores every environment file of `dir` ([`environment_files`]) with `options.strategy`
 /// (or `all`), in parallel; rows come back in file order, strategies in registry order,
 /// whatever the thread count. Each file's lower bounds are computed once, within
-/// `options.limits.bounds_seconds`; `options.seed` and `options.trace` are not used.
+/// `options.limits.bounds_seconds`; `options.seed` and `options.trace` are not used; ROS maps are
+/// read with `options.simplify`.
 ///
 /// # Errors
 /// [`ExploreError`] for a folder that cannot be read or holds no environment file, an unknown
@@ -101,12 +103,14 @@ pub fn sweep_dir(
         on(SweepEvent::Warning(&SweepWarning::UnlimitedRange));
     }
     check_budgets(&options.limits)?;
+    check_simplify(options.simplify)?;
+    let map = RosMapOptions { simplify: options.simplify, ..RosMapOptions::default() };
     // Indices into the inputs for the files that loaded, their errors for the others.
     let mut inputs: Vec<SweepInput> = Vec::new();
     let mut loaded: Vec<Result<usize, String>> = Vec::new();
     for f in &files {
         let name = file_name(f);
-        match crate::io::sweep::read_with_start(f) {
+        match crate::io::sweep::read_with_start(f, &map) {
             Ok((env, start)) => {
                 loaded.push(Ok(inputs.len()));
                 inputs.push(SweepInput { name, domain: env.domain, start });
