@@ -326,33 +326,13 @@ impl Known {
         }
         // The unit normal into the region (left of the window).
         let n = [-dy / len, dx / len];
-        let at = v.at;
-        let dist = |p: Point| (p[0] - at[0]).hypot(p[1] - at[1]);
-        // A window lies on a ray from the viewpoint through its reflex vertex, so a move that
-        // keeps `c` from that vertex must leave the ray at an angle of at least
-        // asin(c / distance to the vertex): candidates turn the gap point about the viewpoint
-        // into the region by such angles (at its distance and nearer), then step sideways.
-        let near = dist(from).min(dist(to)).max(f64::MIN_POSITIVE);
-        // A scan within the robot's own size of an earlier one would see about what that one
-        // saw: such candidates are skipped.
-        let ok = |z: Point| v.reaches(z) && v.clear(z, c) && !self.stood_near(z, 2.0 * c);
         [0.5, 0.25, 0.75, 0.125, 0.375, 0.625, 0.875].into_iter().find_map(|f| {
             let t = gap[0] + f * (gap[1] - gap[0]);
             let x = [from[0] + t * dx, from[1] + t * dy];
-            let (rx, ry) = (x[0] - at[0], x[1] - at[1]);
-            // Turning toward the region: the side of the window the normal points to.
-            let side = if rx * n[1] - ry * n[0] < 0.0 { 1.0 } else { -1.0 };
-            let turned = [1.2, 2.0, 3.0].into_iter().flat_map(move |k: f64| {
-                let a = side * (k * c / near).min(1.0).asin();
-                let (s, co) = a.sin_cos();
-                [1.0, 0.75, 0.5].into_iter().map(move |r: f64| {
-                    [at[0] + r * (co * rx - s * ry), at[1] + r * (s * rx + co * ry)]
-                })
-            });
-            let stepped = [1.0, 1.5, 2.5, 4.0]
+            [1.0, 1.5, 2.5, 4.0]
                 .into_iter()
-                .map(move |k| [x[0] + k * c * n[0], x[1] + k * c * n[1]]);
-            turned.chain(stepped).find(|&z| ok(z))
+                .map(|k| [x[0] + k * c * n[0], x[1] + k * c * n[1]])
+                .find(|&z| v.reaches(z) && v.clear(z, c) && !self.stood_at(z))
         })
     }
 
@@ -420,11 +400,6 @@ impl Known {
     /// same stepped-back point; a second scan there would see nothing new).
     fn stood_at(&self, z: Point) -> bool {
         self.views.iter().any(|v| v.at == z)
-    }
-
-    /// Whether a scan was already taken within `r` of `z`.
-    fn stood_near(&self, z: Point, r: f64) -> bool {
-        self.views.iter().any(|v| (v.at[0] - z[0]).hypot(v.at[1] - z[1]) <= r)
     }
 
     /// The index among `view`'s windows of the window that is its piece `piece`, if it is one
