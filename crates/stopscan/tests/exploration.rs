@@ -307,7 +307,11 @@ fn views_benchmarks_on_the_small_shared_polygons() {
     }
     assert_eq!(r.rows.iter().filter(|row| row.label.contains("offline optimum")).count(), 3);
     assert!(r.notes[0].starts_with(&format!("{} of {} runs", 3 * n, 3 * n)), "{}", r.notes[0]);
-    assert!(r.notes[1].starts_with(&format!("{} of {} runs", 3 * n, 3 * n)), "{}", r.notes[1]);
+    // explore_lite leaves frontiers shorter than its min_frontier_size by design; every other
+    // strategy's run is complete.
+    let complete: usize = r.notes[1].split(' ').next().unwrap().parse().unwrap();
+    assert!(complete >= 3 * (n - 1), "{}", r.notes[1]);
+    assert!(r.notes[1].contains(&format!(" of {} runs complete", 3 * n)), "{}", r.notes[1]);
 }
 
 /// The visibility benchmark's random polygon with holes: within r + 1, nothing left open,

@@ -30,7 +30,7 @@ fn exploration_office_585_grazing_window_terminates() {
     use stopscan::strategy::polygon::by_name;
     let inst = stopscan::generate::office(6, 14, 585).unwrap();
     let world = stopscan::world::polygon::PolygonWorld::new(inst.domain.clone()).unwrap();
-    for name in ["depth_first", "nearest_frontier", "greedy_nbv"] {
+    for name in ["depth_first", "nearest_frontier", "greedy_nbv", "explore_lite"] {
         let mut s = by_name(name, &CostModel::default()).unwrap();
         let r =
             run(&world, inst.start, &CostModel::default(), s.as_mut(), &mut NoObserver).unwrap();

@@ -33,6 +33,22 @@ fn assert_complete(world: &PolygonWorld, run: &PolygonRun, label: &str) {
     }
 }
 
+/// What a strategy's run must reach: complete for the paper's algorithms and the window
+/// baselines; `explore_lite` leaves frontiers shorter than its `min_frontier_size` (0.5 m)
+/// unvisited by design, so it is held to legal moves and 99% of the free area.
+fn assert_explored(world: &PolygonWorld, run: &PolygonRun, strategy: &str, label: &str) {
+    if strategy != "explore_lite" {
+        return assert_complete(world, run, label);
+    }
+    for w in run.path.windows(2) {
+        assert!(world.can_move(w[0], w[1]), "{label}: illegal move {w:?}");
+    }
+    let polys: Vec<_> = run.scans.iter().map(|s| s.region.polygon.clone()).collect();
+    let seen = stopscan::algorithm::region::Region::union_all(&polys).area();
+    let d = world.domain().area();
+    assert!(seen >= 0.99 * d, "{label}: {seen} m² of {d} seen");
+}
+
 /// Every vertex of every ring, and the middle of every axis-parallel edge (exact there).
 fn boundary_points(d: &Domain) -> Vec<Point> {
     let mut out = Vec::new();
@@ -73,7 +89,7 @@ fn every_strategy_explores_from_a_start_on_a_wall_or_a_vertex() {
                 for strategy in REGISTRY.names() {
                     let w = if strategy == "range_limited" { &ranged } else { &world };
                     let run = explore(w, p, strategy);
-                    assert_complete(w, &run, &format!("{label}, {strategy}"));
+                    assert_explored(w, &run, strategy, &format!("{label}, {strategy}"));
                 }
             }
         }
@@ -148,7 +164,7 @@ fn a_georeferenced_polygon_is_moved_exactly_and_explored_completely() {
             let range = (s == "range_limited").then_some(5.0);
             let w = PolygonWorld::with_range(env.domain.clone(), range).unwrap();
             let run = explore(&w, env.start.unwrap(), s);
-            assert_complete(&w, &run, &format!("{s}, offset {off}"));
+            assert_explored(&w, &run, s, &format!("{s}, offset {off}"));
         }
     }
 }

@@ -127,33 +127,45 @@ impl View {
     /// Whether the robot, driving straight from the viewpoint to `z`, stays at least `c` from
     /// the region's boundary (walls and windows alike: beyond a window nothing is known).
     fn clear(&self, z: Point, c: f64) -> bool {
-        let n = self.polygon.len();
-        (0..n)
-            .all(|i| segments_distance(self.at, z, self.polygon[i], self.polygon[(i + 1) % n]) >= c)
+        keeps_clear(&self.polygon, self.at, z, c)
     }
 
     /// Whether the straight move from the viewpoint to `z` stays strictly inside the region
-    /// after leaving the viewpoint, `(at, z]` (exact tests against its boundary, whose reflex
-    /// vertices are exact input points). The viewpoint itself may lie on the boundary (a start
-    /// against a wall or in a corner): an edge through it meets the move only there unless `z`
-    /// lies on the edge's line.
+    /// after leaving the viewpoint ([`reaches`]).
     fn reaches(&self, z: Point) -> bool {
-        let n = self.polygon.len();
-        ring_side(&self.polygon, z) == RingSide::Inside
-            && (0..n).all(|i| {
-                let (p, q) = (self.polygon[i], self.polygon[(i + 1) % n]);
-                if on_segment(p, q, self.at) {
-                    orient_sign(p, q, z) != 0
-                } else {
-                    !segments_intersect(self.at, z, p, q)
-                }
-            })
+        reaches(&self.polygon, self.at, z)
     }
 
     /// How many windows the view's region has.
     pub(super) fn windows_len(&self) -> usize {
         self.windows.len()
     }
+}
+
+/// Whether a robot driving straight from `at` to `z` stays at least `c` from the boundary of
+/// `polygon`, a region seen from `at` (walls and windows alike: beyond a window nothing is
+/// known). Floating point, like the clearance it checks.
+pub(super) fn keeps_clear(polygon: &[Point], at: Point, z: Point, c: f64) -> bool {
+    let n = polygon.len();
+    (0..n).all(|i| segments_distance(at, z, polygon[i], polygon[(i + 1) % n]) >= c)
+}
+
+/// Whether the straight move from `at` (the viewpoint `polygon` was seen from) to `z` stays
+/// strictly inside the region after leaving `at`, `(at, z]` (exact tests against its
+/// boundary, whose reflex vertices are exact input points). The viewpoint itself may lie on
+/// the boundary (a start against a wall or in a corner): an edge through it meets the move
+/// only there unless `z` lies on the edge's line.
+pub(super) fn reaches(polygon: &[Point], at: Point, z: Point) -> bool {
+    let n = polygon.len();
+    ring_side(polygon, z) == RingSide::Inside
+        && (0..n).all(|i| {
+            let (p, q) = (polygon[i], polygon[(i + 1) % n]);
+            if on_segment(p, q, at) {
+                orient_sign(p, q, z) != 0
+            } else {
+                !segments_intersect(at, z, p, q)
+            }
+        })
 }
 
 impl Known {

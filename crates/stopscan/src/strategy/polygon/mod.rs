@@ -9,11 +9,14 @@
 //!   (Lemma 4);
 //! - `nearest_frontier`: [`NearestFrontier`], the nearest open window by travel;
 //! - `greedy_nbv`: [`GreedyNbv`], the most predicted area per second of cost;
+//! - `explore_lite`: [`ExploreLite`], explore_lite's frontier explorer on an occupancy raster
+//!   of what has been seen (the baseline ROS users run);
 //! - `cost_aware`: [`CostAware`], stopscan's own: viewpoints on and off windows, weighed by
 //!   the predicted new area behind the windows they see against travel and scan time.
 
 mod cost_aware;
 mod depth_first;
+mod explore_lite;
 mod greedy_nbv;
 mod known;
 mod nearest_frontier;
@@ -21,6 +24,10 @@ mod range_limited;
 
 pub use cost_aware::CostAware;
 pub use depth_first::DepthFirst;
+pub use explore_lite::{
+    BLACKLIST_TOLERANCE_CELLS, ExploreLite, ExploreLiteParams, InvalidExploreLiteParams,
+    MAX_SIDE_CELLS,
+};
 pub use greedy_nbv::GreedyNbv;
 pub use known::{Placement, Skipped};
 pub use nearest_frontier::NearestFrontier;
@@ -54,6 +61,11 @@ pub const REGISTRY: Registry<PolygonBuild> = Registry::new(&[
         name: "greedy_nbv",
         summary: "greedy next-best-view: most predicted new area per second of cost",
         build: |s| Box::new(GreedyNbv::for_robot(s)),
+    },
+    Entry {
+        name: "explore_lite",
+        summary: "explore_lite's frontier explorer (ROS): frontier clusters on an occupancy raster, largest first",
+        build: |s| Box::new(ExploreLite::for_robot(s)),
     },
     Entry {
         name: "cost_aware",
@@ -121,7 +133,7 @@ mod tests {
         let e = build("warp", &CostModel::default()).err().unwrap();
         assert_eq!(
             e.to_string(),
-            "unknown strategy \"warp\"; use one of: depth_first, nearest_frontier, greedy_nbv, cost_aware, range_limited"
+            "unknown strategy \"warp\"; use one of: depth_first, nearest_frontier, greedy_nbv, explore_lite, cost_aware, range_limited"
         );
     }
 }

@@ -1,0 +1,1353 @@
+//! An explore_lite-style frontier explorer: the baseline ROS users run today (the
+//! `explore_lite` package of m-explore, with move_base driving the robot), on an occupancy
+//! raster of what has been seen.
+//!
+//! # What it does
+//! Every scan is rasterised once, when it arrives, into an occupancy grid that grows with the
+//! views (a bounding box, re-allocated when a view falls outside it). A cell is
+//! - **free** when its closed square lies inside the closed region of some view: its centre is
+//!   inside (scanline fill) and no edge of that region touches it (a supercover of the
+//!   region's edges, grown by a hair so that rounding stays on the safe side);
+//! - **occupied** when a wall piece ([`BoundaryPiece::Edge`] or [`BoundaryPiece::Partial`]) of
+//!   any view touches it (walls are true obstacles; occupied wins over free);
+//! - **unknown** otherwise, including the cells a window or a range chord runs through, unless
+//!   another view contains them whole (then they are free: no frontier at the seam of two
+//!   views).
+//!
+//! After each scan it searches frontiers as explore_lite's `FrontierSearch::searchFrom`
+//! does: a breadth-first search over free cells (4-connected) from the robot's cell (or the
+//! nearest free cell); an unknown cell with a free 4-neighbour is a frontier cell, and each
+//! one met starts a cluster grown over frontier cells by 8-connectivity. A cluster has a size
+//! (cells), a centroid, and a distance (from the centre of the robot's cell to its nearest
+//! cell); clusters shorter than `min_frontier_size` (size × resolution) are dropped, and the
+//! others are ranked by the cost `potential_scale · distance − gain_scale · size ·
+//! resolution`. It takes the cheapest one that is not blacklisted (explore_lite's rule: a
+//! goal within 5 cells of a blacklisted point, in both coordinates, is blacklisted too),
+//! drives to it and scans on arrival. The run is priced by the run's cost model like every
+//! strategy's; the choice is explore_lite's and does not look at it. It is done when no
+//! frontier of at least `min_frontier_size` that it can reach is left.
+//!
+//! # Safe motion
+//! Moves are planned on **safe** cells only: a cell is safe when every cell within
+//! `⌈clearance / resolution⌉ + 1` cells of it (Chebyshev) is free, where the clearance is the
+//! footprint's [`planning_clearance`](Footprint::planning_clearance) (for a point robot safe
+//! is free). A* plans over safe cells, 8-connected (a diagonal step only when both
+//! orthogonal neighbours are safe); the cell path is then cut into straight moves, each
+//! extended greedily while every cell its supercover touches is safe. So every move lies in
+//! the union of safe cells' squares, and the robot's disc (of the planning clearance) around
+//! any point of it lies in free cells: the world accepts the move. The first move, from the
+//! viewpoint (not a cell centre), either stays in safe cells the same way or, when the robot
+//! stands too close to a wall for its cell to be safe (a start), goes straight to a nearby
+//! safe cell through the region just scanned, keeping the clearance from its boundary.
+//!
+//! # Defaults
+//! Those of explore_lite's node (`explore.cpp` and its wiki page): `potential_scale` 1e-3,
+//! `gain_scale` 1.0, `min_frontier_size` 0.5 m, and its blacklist tolerance of 5 cells. The
+//! launch file `explore.launch` sets `potential_scale` 3.0 and `min_frontier_size` 0.75;
+//! [`ExploreLite::with_params`] takes those or any others. explore_lite has no resolution of
+//! its own (it reads move_base's costmap): 0.05 m is a typical costmap's.
+//!
+//! # Departures from explore_lite
+//! - **Discrete stop and scan.** explore_lite replans at `planner_frequency` (1 Hz) while the
+//!   robot drives and the map fills in, and may switch goals mid-trip; here the map changes
+//!   only at scans, so it plans once per stop and drives the whole trip, then scans.
+//! - **The goal is moved to a safe cell.** explore_lite sends the centroid itself to
+//!   move_base; it often lies in unknown space or in an obstacle, where move_base would fail
+//!   (or, with planning through unknown space, drive into the unknown). Here the goal is the
+//!   reachable safe cell nearest to the centroid (its centre is where the robot scans).
+//! - **Unknown space is never traversed.** explore_lite's planner may plan through unknown
+//!   space; here every move lies in cells seen free, so no move can be refused.
+//! - **No progress timeout.** `progress_timeout` (30 s) blacklists a goal the robot does not
+//!   get closer to; no time passes without progress in the simulator. Its static-world
+//!   counterpart: a frontier whose goal cell is where a scan already stood (the robot's own
+//!   cell included) is blacklisted, since a scan there would see nothing new. A frontier with
+//!   no reachable safe cell, or no A* path, is blacklisted as move_base's failure would.
+//! - **`orientation_scale`** does nothing in explore_lite either; it is not modelled.
+//! - **Cost and centroid.** explore_lite multiplies the distance (already in metres) by the
+//!   resolution once more; here both terms are in metres, `potential_scale · distance −
+//!   gain_scale · size · resolution` (with the default 1e-3 the distance barely counts in
+//!   either). explore_lite's centroid leaves out the cluster's first cell while dividing by a
+//!   size that counts it; here every cell counts in the centroid and the distance.
+//! - **Map size.** The raster grows to at most [`MAX_SIDE_CELLS`] cells a side around the
+//!   start (410 m at 0.05 m), as a costmap has a fixed size; nothing is mapped beyond.
+
+use std::collections::{BTreeSet, VecDeque};
+
+use serde::{Deserialize, Serialize};
+
+use super::known::{keeps_clear, reaches};
+use super::{PolygonFeedback, PolygonStrategy};
+use crate::algorithm::visibility::BoundaryPiece;
+use crate::kernel::{Point, magnitude};
+use crate::protocol::Action;
+use crate::protocol::polygon::{Footprint, PolygonObservation, RobotSetup};
+
+/// explore_lite's blacklist tolerance: a goal within this many cells of a blacklisted point,
+/// in both coordinates, is blacklisted too (`Explore::goalOnBlacklist`).
+pub const BLACKLIST_TOLERANCE_CELLS: f64 = 5.0;
+
+/// The largest side of the raster, cells (around the start).
+pub const MAX_SIDE_CELLS: i64 = 8192;
+
+/// The hair by which the rasteriser grows every boundary segment, relative to the magnitude
+/// of the coordinates seen (at least 1): far above the rounding of the regions' coordinates.
+const HAIR_REL: f64 = 1e-9;
+
+/// Cells added on each side when the raster grows, so that it is not re-allocated at every
+/// view.
+const GROWTH_PAD: i64 = 64;
+
+/// How far (cells, Chebyshev) from its own cell the robot looks for a safe cell to drive to
+/// straight when its own cell is not safe.
+const MAX_ENTRY_CELLS: i64 = 64;
+
+/// A* cost of an orthogonal step (a diagonal one costs [`DIAGONAL`]).
+const STEP: u64 = 1000;
+const DIAGONAL: u64 = 1414;
+
+/// The 4-neighbours, then the diagonal ones.
+const NEIGHBOURS: [[i64; 2]; 8] =
+    [[-1, 0], [1, 0], [0, -1], [0, 1], [-1, -1], [-1, 1], [1, -1], [1, 1]];
+
+const UNKNOWN: u8 = 0;
+const FREE: u8 = 1;
+const OCCUPIED: u8 = 2;
+const STATE: u8 = 3;
+const SAFE: u8 = 4;
+
+/// explore_lite's parameters, and the raster's resolution.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+pub struct ExploreLiteParams {
+    /// The raster's cell size, metres (0.05, a typical costmap's).
+    pub resolution: f64,
+    /// The weight of the distance to a frontier, per metre (`potential_scale`, 1e-3).
+    pub potential_scale: f64,
+    /// The weight of a frontier's size, per metre (`gain_scale`, 1.0).
+    pub gain_scale: f64,
+    /// The shortest frontier worth a trip, metres (`min_frontier_size`, 0.5): size ×
+    /// resolution.
+    pub min_frontier_size: f64,
+}
+
+impl Default for ExploreLiteParams {
+    fn default() -> Self {
+        Self { resolution: 0.05, potential_scale: 1e-3, gain_scale: 1.0, min_frontier_size: 0.5 }
+    }
+}
+
+/// Parameters [`ExploreLite::with_params`] refuses.
+#[derive(Debug, Clone, PartialEq, thiserror::Error)]
+pub enum InvalidExploreLiteParams {
+    /// A resolution that is not a finite number > 0.
+    #[error("the raster resolution must be a finite number > 0, got {0}")]
+    Resolution(f64),
+    /// A weight or a size that is not finite.
+    #[error("{name} must be a finite number, got {value}")]
+    NotFinite {
+        /// The parameter.
+        name: &'static str,
+        /// Its value.
+        value: f64,
+    },
+}
+
+/// An explore_lite-style frontier explorer (see the [module](self)). Its whole state is
+/// serialisable.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct ExploreLite {
+    params: ExploreLiteParams,
+    footprint: Footprint,
+    raster: Raster,
+    /// The centroids of blacklisted frontiers.
+    blacklist: Vec<Point>,
+    /// The cells scans stood in.
+    scanned: BTreeSet<[i64; 2]>,
+    /// The region of the last scan and where it was taken: the first move of a trip may cross
+    /// it straight.
+    last: Option<LastView>,
+    /// Waypoints still to drive, last first.
+    route: Vec<Point>,
+}
+
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+struct LastView {
+    at: Point,
+    polygon: Vec<Point>,
+}
+
+impl ExploreLite {
+    /// A fresh explorer with explore_lite's defaults for a robot with a footprint
+    /// ([`RobotSetup`]; its sensor's window rule is not used: `min_frontier_size` plays its
+    /// part).
+    pub fn for_robot(setup: &RobotSetup) -> Self {
+        Self::build(setup, ExploreLiteParams::default())
+    }
+
+    /// A fresh explorer with these parameters.
+    ///
+    /// # Errors
+    /// [`InvalidExploreLiteParams`] for a resolution that is not a finite number > 0, or a
+    /// weight or size that is not finite.
+    pub fn with_params(
+        setup: &RobotSetup,
+        params: ExploreLiteParams,
+    ) -> Result<Self, InvalidExploreLiteParams> {
+        let r = params.resolution;
+        if !r.is_finite() || r <= 0.0 {
+            return Err(InvalidExploreLiteParams::Resolution(r));
+        }
+        for (name, value) in [
+            ("potential_scale", params.potential_scale),
+            ("gain_scale", params.gain_scale),
+            ("min_frontier_size", params.min_frontier_size),
+        ] {
+            if !value.is_finite() {
+                return Err(InvalidExploreLiteParams::NotFinite { name, value });
+            }
+        }
+        Ok(Self::build(setup, params))
+    }
+
+    fn build(setup: &RobotSetup, params: ExploreLiteParams) -> Self {
+        Self {
+            params,
+            footprint: setup.footprint.clone(),
+            raster: Raster::new(params.resolution),
+            blacklist: Vec::new(),
+            scanned: BTreeSet::new(),
+            last: None,
+            route: Vec::new(),
+        }
+    }
+
+    /// The parameters.
+    pub fn params(&self) -> &ExploreLiteParams {
+        &self.params
+    }
+
+    /// The centroids of the frontiers blacklisted so far.
+    pub fn blacklisted(&self) -> &[Point] {
+        &self.blacklist
+    }
+
+    /// Whether a goal is on the blacklist (explore_lite's `goalOnBlacklist`).
+    fn on_blacklist(&self, p: Point) -> bool {
+        let tol = BLACKLIST_TOLERANCE_CELLS * self.params.resolution;
+        self.blacklist.iter().any(|b| (p[0] - b[0]).abs() < tol && (p[1] - b[1]).abs() < tol)
+    }
+
+    /// The clearance planned moves keep (0 for a point robot).
+    fn clearance(&self) -> f64 {
+        self.footprint.planning_clearance(self.raster.scale)
+    }
+
+    /// The inflation radius, cells: 0 for a point robot, else `⌈clearance / res⌉ + 1`.
+    fn inflation(&self) -> i64 {
+        if self.footprint.is_point() {
+            0
+        } else {
+            (self.clearance() / self.params.resolution).ceil() as i64 + 1
+        }
+    }
+
+    /// Records a scan: rasterises it and remembers where it stood.
+    fn add(&mut self, obs: &PolygonObservation) {
+        let k_before = self.inflation();
+        self.raster.scale = self.raster.scale.max(magnitude(&obs.region.polygon)).max(1.0);
+        let k = self.inflation();
+        let changed = self.raster.add_view(&obs.region.polygon, &obs.region.boundary, obs.at);
+        if k == k_before {
+            if let Some((lo, hi)) = changed {
+                self.raster.update_safe(lo, hi, k);
+            }
+        } else {
+            self.raster.update_safe_everywhere(k);
+        }
+        self.scanned.insert(self.raster.cell_of(obs.at));
+        self.last = Some(LastView { at: obs.at, polygon: obs.region.polygon.clone() });
+    }
+
+    /// After a scan at `at`: the cheapest reachable frontier's trip, or done.
+    fn plan(&mut self, at: Point) -> Action<Point> {
+        let frontiers = self.raster.frontiers(at, &self.params);
+        let entries = self.entries(at);
+        let reach = self.raster.reachable(&entries);
+        let here = self.raster.cell_of(at);
+        for f in frontiers {
+            if self.on_blacklist(f.centroid) {
+                continue;
+            }
+            let trip = self.raster.nearest_reachable(f.centroid, &reach).and_then(|goal| {
+                let cell = self.raster.global(goal);
+                if cell == here || self.scanned.contains(&cell) {
+                    return None;
+                }
+                let path = self.raster.astar(&entries, goal)?;
+                self.raster.compress(at, &entries, &path)
+            });
+            match trip {
+                Some(waypoints) if !waypoints.is_empty() => {
+                    self.route = waypoints.into_iter().rev().collect();
+                    return self.next_move();
+                }
+                _ => self.blacklist.push(f.centroid),
+            }
+        }
+        Action::Done
+    }
+
+    /// The cells a trip from `at` may start with, and how: the robot's own cell when it is
+    /// safe and the move to its centre stays in safe cells; otherwise the safe cells nearby
+    /// that a straight move through the last scan's region reaches with the clearance.
+    fn entries(&self, at: Point) -> Vec<Entry> {
+        let r = &self.raster;
+        let own = r.cell_of(at);
+        if let Some(i) = r.local(own)
+            && r.cells[i] & SAFE != 0
+            && r.segment_is_safe(at, r.centre(own))
+        {
+            return vec![Entry { cell: i, cost: r.step_cost(at, r.centre(own)), direct: false }];
+        }
+        let Some(view) = self.last.as_ref().filter(|v| v.at == at) else { return Vec::new() };
+        let c = self.clearance();
+        // The box around the robot's cell grows until it holds a safe cell the robot can
+        // drive to straight (a start in a corner or a narrow spike may be far from one).
+        let mut reach = self.inflation() + 3;
+        loop {
+            let mut out = Vec::new();
+            for y in own[1] - reach..=own[1] + reach {
+                for x in own[0] - reach..=own[0] + reach {
+                    let Some(i) = r.local([x, y]) else { continue };
+                    if r.cells[i] & SAFE == 0 {
+                        continue;
+                    }
+                    let q = r.centre([x, y]);
+                    if q != at
+                        && reaches(&view.polygon, at, q)
+                        && (c == 0.0 || keeps_clear(&view.polygon, at, q, c))
+                    {
+                        out.push(Entry { cell: i, cost: r.step_cost(at, q), direct: true });
+                    }
+                }
+            }
+            if !out.is_empty() || reach >= MAX_ENTRY_CELLS {
+                return out;
+            }
+            reach = (2 * reach).min(MAX_ENTRY_CELLS);
+        }
+    }
+
+    /// The next action of the planned trip: the next waypoint, or the scan at its end.
+    fn next_move(&mut self) -> Action<Point> {
+        match self.route.pop() {
+            Some(p) => Action::MoveTo { to: p },
+            None => Action::Scan,
+        }
+    }
+}
+
+impl PolygonStrategy for ExploreLite {
+    fn name(&self) -> &'static str {
+        "explore_lite"
+    }
+
+    fn act(&mut self, feedback: &PolygonFeedback) -> Action<Point> {
+        match feedback {
+            PolygonFeedback::Start { .. } => Action::Scan,
+            PolygonFeedback::Arrived => self.next_move(),
+            PolygonFeedback::Scanned(obs) => {
+                self.add(obs);
+                self.plan(obs.at)
+            }
+        }
+    }
+}
+
+/// A first step of a trip: from the robot to the cell with this local index.
+#[derive(Debug, Clone, Copy, PartialEq)]
+struct Entry {
+    cell: usize,
+    cost: u64,
+    /// Reached straight through the last scan's region (the robot's cell is not safe).
+    direct: bool,
+}
+
+/// A frontier cluster, as explore_lite's `Frontier`.
+#[derive(Debug, Clone, Copy, PartialEq)]
+struct Frontier {
+    /// Cells.
+    size: usize,
+    /// From the centre of the robot's cell to the nearest cell's centre, metres.
+    min_distance: f64,
+    /// The mean of its cells' centres.
+    centroid: Point,
+    /// `potential_scale · min_distance − gain_scale · size · resolution`.
+    cost: f64,
+}
+
+/// The occupancy raster: a box of cells `[x·res, (x+1)·res] × [y·res, (y+1)·res]` for
+/// integer `x`, `y`, each with its state (unknown, free, occupied) and whether it is safe.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+struct Raster {
+    res: f64,
+    /// The magnitude of the coordinates seen (at least 1).
+    scale: f64,
+    /// The cell of the first viewpoint: the raster stays within [`MAX_SIDE_CELLS`] around it.
+    anchor: Option<[i64; 2]>,
+    /// The box's lower-left cell.
+    origin: [i64; 2],
+    /// Its width and height, cells.
+    size: [usize; 2],
+    /// State bits and the safe bit, row by row from the bottom (run-length coded in JSON).
+    #[serde(with = "runs")]
+    cells: Vec<u8>,
+}
+
+impl Raster {
+    fn new(res: f64) -> Self {
+        Self { res, scale: 1.0, anchor: None, origin: [0, 0], size: [0, 0], cells: Vec::new() }
+    }
+
+    /// The hair boundary segments are grown by.
+    fn hair(&self) -> f64 {
+        HAIR_REL * self.scale
+    }
+
+    fn cell_of(&self, p: Point) -> [i64; 2] {
+        [(p[0] / self.res).floor() as i64, (p[1] / self.res).floor() as i64]
+    }
+
+    fn centre(&self, c: [i64; 2]) -> Point {
+        [(c[0] as f64 + 0.5) * self.res, (c[1] as f64 + 0.5) * self.res]
+    }
+
+    /// The local index of a cell, if it is in the box.
+    fn local(&self, c: [i64; 2]) -> Option<usize> {
+        let (x, y) = (c[0] - self.origin[0], c[1] - self.origin[1]);
+        (x >= 0 && y >= 0 && (x as usize) < self.size[0] && (y as usize) < self.size[1])
+            .then(|| y as usize * self.size[0] + x as usize)
+    }
+
+    fn global(&self, i: usize) -> [i64; 2] {
+        let w = self.size[0];
+        [self.origin[0] + (i % w) as i64, self.origin[1] + (i / w) as i64]
+    }
+
+    fn state(&self, c: [i64; 2]) -> u8 {
+        self.local(c).map_or(UNKNOWN, |i| self.cells[i] & STATE)
+    }
+
+    fn is_safe(&self, c: [i64; 2]) -> bool {
+        self.local(c).is_some_and(|i| self.cells[i] & SAFE != 0)
+    }
+
+    /// The A* cost of a straight step.
+    fn step_cost(&self, a: Point, b: Point) -> u64 {
+        ((b[0] - a[0]).hypot(b[1] - a[1]) / self.res * STEP as f64).round() as u64
+    }
+
+    /// Whether every cell the supercover of `a b` touches is safe.
+    fn segment_is_safe(&self, a: Point, b: Point) -> bool {
+        supercover(self.res, a, b, self.hair(), |c| self.is_safe(c))
+    }
+
+    /// Grows the box to hold the cells `lo..=hi` (within [`MAX_SIDE_CELLS`] around the
+    /// anchor), with a margin.
+    fn ensure(&mut self, lo: [i64; 2], hi: [i64; 2]) {
+        let Some(anchor) = self.anchor else { return };
+        let half = MAX_SIDE_CELLS / 2;
+        let clip = |v: i64, k: usize| v.clamp(anchor[k] - half, anchor[k] + half - 1);
+        let (lo, hi) = ([clip(lo[0], 0), clip(lo[1], 1)], [clip(hi[0], 0), clip(hi[1], 1)]);
+        let end = |k: usize| self.origin[k] + self.size[k] as i64 - 1;
+        if !self.cells.is_empty() && (0..2).all(|k| lo[k] >= self.origin[k] && hi[k] <= end(k)) {
+            return;
+        }
+        let (mut nlo, mut nhi) =
+            ([lo[0] - GROWTH_PAD, lo[1] - GROWTH_PAD], [hi[0] + GROWTH_PAD, hi[1] + GROWTH_PAD]);
+        if !self.cells.is_empty() {
+            for k in 0..2 {
+                nlo[k] = nlo[k].min(self.origin[k]);
+                nhi[k] = nhi[k].max(end(k));
+            }
+        }
+        let (nlo, nhi) = ([clip(nlo[0], 0), clip(nlo[1], 1)], [clip(nhi[0], 0), clip(nhi[1], 1)]);
+        let size = [(nhi[0] - nlo[0] + 1) as usize, (nhi[1] - nlo[1] + 1) as usize];
+        let mut cells = vec![UNKNOWN; size[0] * size[1]];
+        for y in 0..self.size[1] {
+            let gy = self.origin[1] + y as i64;
+            let from = y * self.size[0];
+            let to = (gy - nlo[1]) as usize * size[0] + (self.origin[0] - nlo[0]) as usize;
+            cells[to..to + self.size[0]].copy_from_slice(&self.cells[from..from + self.size[0]]);
+        }
+        self.origin = nlo;
+        self.size = size;
+        self.cells = cells;
+    }
+
+    /// Rasterises one view; returns the box of cells whose state may have changed.
+    fn add_view(
+        &mut self,
+        polygon: &[Point],
+        pieces: &[BoundaryPiece],
+        at: Point,
+    ) -> Option<([i64; 2], [i64; 2])> {
+        if polygon.len() < 3 {
+            return None;
+        }
+        let eps = self.hair();
+        if self.anchor.is_none() {
+            self.anchor = Some(self.cell_of(at));
+        }
+        let (mut lo, mut hi) = ([f64::INFINITY; 2], [f64::NEG_INFINITY; 2]);
+        for p in polygon.iter().chain(std::iter::once(&at)) {
+            for k in 0..2 {
+                lo[k] = lo[k].min(p[k]);
+                hi[k] = hi[k].max(p[k]);
+            }
+        }
+        let (clo, chi) =
+            (self.cell_of([lo[0] - eps, lo[1] - eps]), self.cell_of([hi[0] + eps, hi[1] + eps]));
+        let (clo, chi) = ([clo[0] - 1, clo[1] - 1], [chi[0] + 1, chi[1] + 1]);
+        self.ensure(clo, chi);
+        // Clip the box to the raster (it may be capped).
+        let end =
+            [self.origin[0] + self.size[0] as i64 - 1, self.origin[1] + self.size[1] as i64 - 1];
+        let blo = [clo[0].max(self.origin[0]), clo[1].max(self.origin[1])];
+        let bhi = [chi[0].min(end[0]), chi[1].min(end[1])];
+        if blo[0] > bhi[0] || blo[1] > bhi[1] {
+            return None;
+        }
+        let bw = (bhi[0] - blo[0] + 1) as usize;
+        let bh = (bhi[1] - blo[1] + 1) as usize;
+        let in_box = |c: [i64; 2]| {
+            (c[0] >= blo[0] && c[0] <= bhi[0] && c[1] >= blo[1] && c[1] <= bhi[1])
+                .then(|| (c[1] - blo[1]) as usize * bw + (c[0] - blo[0]) as usize)
+        };
+        // Cells the region's boundary touches: never free by this view.
+        let mut touched = vec![false; bw * bh];
+        let n = polygon.len();
+        for i in 0..n {
+            supercover(self.res, polygon[i], polygon[(i + 1) % n], eps, |c| {
+                if let Some(j) = in_box(c) {
+                    touched[j] = true;
+                }
+                true
+            });
+        }
+        // Cells a wall touches: occupied.
+        for piece in pieces {
+            if let BoundaryPiece::Edge { from, to, .. } | BoundaryPiece::Partial { from, to, .. } =
+                *piece
+            {
+                supercover(self.res, from, to, eps, |c| {
+                    if let Some(j) = self.local(c) {
+                        self.cells[j] = (self.cells[j] & !STATE) | OCCUPIED;
+                    }
+                    true
+                });
+            }
+        }
+        // Cells whose centre is inside (scanline at the centres' heights) and that the boundary
+        // does not touch: free.
+        let mut crossings: Vec<(i64, f64)> = Vec::new();
+        for i in 0..n {
+            let (p, q) = (polygon[i], polygon[(i + 1) % n]);
+            if p[1] == q[1] {
+                continue;
+            }
+            let (ylo, yhi) = (p[1].min(q[1]), p[1].max(q[1]));
+            // Rows whose centre height y satisfies ylo <= y < yhi (half-open, as a crossing
+            // number must be).
+            let first = ((ylo / self.res - 0.5).ceil() as i64).max(blo[1]);
+            let last = bhi[1];
+            for row in first..=last {
+                let y = (row as f64 + 0.5) * self.res;
+                if y >= yhi {
+                    break;
+                }
+                if y < ylo {
+                    continue;
+                }
+                crossings.push((row, p[0] + (y - p[1]) * (q[0] - p[0]) / (q[1] - p[1])));
+            }
+        }
+        crossings.sort_by(|a, b| a.0.cmp(&b.0).then(a.1.total_cmp(&b.1)));
+        for run in crossings.chunk_by(|a, b| a.0 == b.0) {
+            let row = run[0].0;
+            for pair in run.chunks_exact(2) {
+                let (x0, x1) = (pair[0].1, pair[1].1);
+                let first = ((x0 / self.res - 0.5).floor() as i64).max(blo[0]);
+                let last = ((x1 / self.res - 0.5).ceil() as i64).min(bhi[0]);
+                for x in first..=last {
+                    let cx = (x as f64 + 0.5) * self.res;
+                    if cx <= x0 || cx >= x1 || in_box([x, row]).is_some_and(|j| touched[j]) {
+                        continue;
+                    }
+                    if let Some(j) = self.local([x, row])
+                        && self.cells[j] & STATE == UNKNOWN
+                    {
+                        self.cells[j] = (self.cells[j] & !STATE) | FREE;
+                    }
+                }
+            }
+        }
+        Some((blo, bhi))
+    }
+
+    /// Recomputes the safe bit of the cells within `k` of the box `lo..=hi`: safe when every
+    /// cell within `k` (Chebyshev) is free.
+    fn update_safe(&mut self, lo: [i64; 2], hi: [i64; 2], k: i64) {
+        if self.cells.is_empty() {
+            return;
+        }
+        let end =
+            [self.origin[0] + self.size[0] as i64 - 1, self.origin[1] + self.size[1] as i64 - 1];
+        let tlo = [(lo[0] - k).max(self.origin[0]), (lo[1] - k).max(self.origin[1])];
+        let thi = [(hi[0] + k).min(end[0]), (hi[1] + k).min(end[1])];
+        if tlo[0] > thi[0] || tlo[1] > thi[1] {
+            return;
+        }
+        // Prefix sums of "not free" over the targets grown by k (cells outside count).
+        let slo = [tlo[0] - k, tlo[1] - k];
+        let sw = (thi[0] - tlo[0] + 1 + 2 * k) as usize;
+        let sh = (thi[1] - tlo[1] + 1 + 2 * k) as usize;
+        let mut sum = vec![0u32; (sw + 1) * (sh + 1)];
+        for y in 0..sh {
+            let mut row = 0u32;
+            for x in 0..sw {
+                let c = [slo[0] + x as i64, slo[1] + y as i64];
+                row += u32::from(self.state(c) != FREE);
+                sum[(y + 1) * (sw + 1) + x + 1] = sum[y * (sw + 1) + x + 1] + row;
+            }
+        }
+        let d = (2 * k + 1) as usize;
+        for y in tlo[1]..=thi[1] {
+            for x in tlo[0]..=thi[0] {
+                let (sx, sy) = ((x - tlo[0]) as usize, (y - tlo[1]) as usize);
+                let blocked = sum[(sy + d) * (sw + 1) + sx + d] + sum[sy * (sw + 1) + sx]
+                    - sum[sy * (sw + 1) + sx + d]
+                    - sum[(sy + d) * (sw + 1) + sx];
+                if let Some(i) = self.local([x, y]) {
+                    self.cells[i] =
+                        if blocked == 0 { self.cells[i] | SAFE } else { self.cells[i] & !SAFE };
+                }
+            }
+        }
+    }
+
+    fn update_safe_everywhere(&mut self, k: i64) {
+        if self.cells.is_empty() {
+            return;
+        }
+        let end =
+            [self.origin[0] + self.size[0] as i64 - 1, self.origin[1] + self.size[1] as i64 - 1];
+        self.update_safe(self.origin, end, k);
+    }
+
+    /// The 4- and 8-neighbourhoods of a local index (within the box).
+    fn neighbours(&self, i: usize, eight: bool) -> impl Iterator<Item = usize> + use<> {
+        let [w, h] = self.size;
+        let (x, y) = ((i % w) as i64, (i / w) as i64);
+        NEIGHBOURS.into_iter().take(if eight { 8 } else { 4 }).filter_map(move |d| {
+            let (nx, ny) = (x + d[0], y + d[1]);
+            (nx >= 0 && ny >= 0 && (nx as usize) < w && (ny as usize) < h)
+                .then(|| ny as usize * w + nx as usize)
+        })
+    }
+
+    /// explore_lite's frontier search from the robot at `at`: the clusters of at least
+    /// `min_frontier_size`, cheapest first (ties in the order found).
+    fn frontiers(&self, at: Point, params: &ExploreLiteParams) -> Vec<Frontier> {
+        let Some(pos) = self.local(self.cell_of(at)) else { return Vec::new() };
+        let n = self.cells.len();
+        let free = |i: usize| self.cells[i] & STATE == FREE;
+        // The nearest free cell to start from (explore_lite's nearestCell: breadth first over
+        // 8-neighbours).
+        let start = {
+            let mut seen = vec![false; n];
+            let mut q = VecDeque::from([pos]);
+            seen[pos] = true;
+            let mut found = None;
+            while let Some(i) = q.pop_front() {
+                if free(i) {
+                    found = Some(i);
+                    break;
+                }
+                for j in self.neighbours(i, true) {
+                    if !seen[j] {
+                        seen[j] = true;
+                        q.push_back(j);
+                    }
+                }
+            }
+            match found {
+                Some(i) => i,
+                None => return Vec::new(),
+            }
+        };
+        let reference = self.centre(self.global(pos));
+        let mut visited = vec![false; n];
+        let mut flagged = vec![false; n];
+        let is_new_frontier = |i: usize, flagged: &[bool]| {
+            self.cells[i] & STATE == UNKNOWN
+                && !flagged[i]
+                && self.neighbours(i, false).any(|j| self.cells[j] & STATE == FREE)
+        };
+        let mut out = Vec::new();
+        let mut q = VecDeque::from([start]);
+        visited[start] = true;
+        while let Some(i) = q.pop_front() {
+            for j in self.neighbours(i, false) {
+                if free(j) && !visited[j] {
+                    visited[j] = true;
+                    q.push_back(j);
+                } else if is_new_frontier(j, &flagged) {
+                    flagged[j] = true;
+                    // Grow the cluster over 8-connected frontier cells.
+                    let (mut size, mut sum, mut min_distance) = (0usize, [0.0, 0.0], f64::INFINITY);
+                    let mut cq = VecDeque::from([j]);
+                    while let Some(c) = cq.pop_front() {
+                        let p = self.centre(self.global(c));
+                        size += 1;
+                        sum = [sum[0] + p[0], sum[1] + p[1]];
+                        min_distance =
+                            min_distance.min((p[0] - reference[0]).hypot(p[1] - reference[1]));
+                        for d in self.neighbours(c, true) {
+                            if is_new_frontier(d, &flagged) {
+                                flagged[d] = true;
+                                cq.push_back(d);
+                            }
+                        }
+                    }
+                    if size as f64 * self.res >= params.min_frontier_size {
+                        let centroid = [sum[0] / size as f64, sum[1] / size as f64];
+                        let cost = params.potential_scale * min_distance
+                            - params.gain_scale * size as f64 * self.res;
+                        out.push(Frontier { size, min_distance, centroid, cost });
+                    }
+                }
+            }
+        }
+        out.sort_by(|a, b| a.cost.total_cmp(&b.cost));
+        out
+    }
+
+    /// The safe 8-neighbours of a local index a move may step to (a diagonal only when both
+    /// orthogonal cells are safe), with the step's cost.
+    fn safe_steps(&self, i: usize) -> impl Iterator<Item = (usize, u64)> + '_ {
+        let w = self.size[0];
+        let safe = move |j: usize| self.cells[j] & SAFE != 0;
+        let (x, y) = ((i % w) as i64, (i / w) as i64);
+        let h = self.size[1];
+        let at = move |dx: i64, dy: i64| {
+            let (nx, ny) = (x + dx, y + dy);
+            (nx >= 0 && ny >= 0 && (nx as usize) < w && (ny as usize) < h)
+                .then(|| ny as usize * w + nx as usize)
+                .filter(|&j| safe(j))
+        };
+        NEIGHBOURS.into_iter().filter_map(move |[dx, dy]| {
+            let j = at(dx, dy)?;
+            if dx != 0 && dy != 0 {
+                at(dx, 0)?;
+                at(0, dy)?;
+                Some((j, DIAGONAL))
+            } else {
+                Some((j, STEP))
+            }
+        })
+    }
+
+    /// The safe cells reachable from the entries.
+    fn reachable(&self, entries: &[Entry]) -> Vec<bool> {
+        let mut reach = vec![false; self.cells.len()];
+        let mut q: VecDeque<usize> = VecDeque::new();
+        for e in entries {
+            if !reach[e.cell] {
+                reach[e.cell] = true;
+                q.push_back(e.cell);
+            }
+        }
+        while let Some(i) = q.pop_front() {
+            for (j, _) in self.safe_steps(i) {
+                if !reach[j] {
+                    reach[j] = true;
+                    q.push_back(j);
+                }
+            }
+        }
+        reach
+    }
+
+    /// The reachable cell whose centre is nearest to `p` (the first in row order on ties).
+    fn nearest_reachable(&self, p: Point, reach: &[bool]) -> Option<usize> {
+        if !reach.iter().any(|&r| r) {
+            return None;
+        }
+        let c = self.cell_of(p);
+        let end =
+            [self.origin[0] + self.size[0] as i64 - 1, self.origin[1] + self.size[1] as i64 - 1];
+        // The farthest ring that still meets the box.
+        let span = (0..2)
+            .map(|k| (c[k] - self.origin[k]).abs().max((end[k] - c[k]).abs()))
+            .max()
+            .unwrap_or(0);
+        let mut best: Option<(f64, usize)> = None;
+        let consider = |x: i64, y: i64, best: &mut Option<(f64, usize)>| {
+            let Some(i) = self.local([x, y]).filter(|&i| reach[i]) else { return };
+            let q = self.centre([x, y]);
+            let d = (q[0] - p[0]).hypot(q[1] - p[1]);
+            if best.is_none_or(|(b, bi)| d < b || (d == b && i < bi)) {
+                *best = Some((d, i));
+            }
+        };
+        for r in 0..=span {
+            // Every cell of ring r has its centre at least (r − 1/2)·res from p: once that
+            // exceeds the best distance, no ring further out can do better.
+            if best.is_some_and(|(d, _)| (r as f64 - 1.0) * self.res > d) {
+                break;
+            }
+            if r == 0 {
+                consider(c[0], c[1], &mut best);
+                continue;
+            }
+            for x in c[0] - r..=c[0] + r {
+                consider(x, c[1] - r, &mut best);
+                consider(x, c[1] + r, &mut best);
+            }
+            for y in c[1] - r + 1..c[1] + r {
+                consider(c[0] - r, y, &mut best);
+                consider(c[0] + r, y, &mut best);
+            }
+        }
+        best.map(|b| b.1)
+    }
+
+    /// A* over safe cells from the robot (through its entries) to the cell `goal`: the cell
+    /// path, entry first.
+    fn astar(&self, entries: &[Entry], goal: usize) -> Option<Vec<usize>> {
+        const ROBOT: usize = usize::MAX;
+        let w = self.size[0];
+        let (gx, gy) = ((goal % w) as i64, (goal / w) as i64);
+        let h = |&i: &usize| -> u64 {
+            if i == ROBOT {
+                return 0;
+            }
+            let (dx, dy) =
+                (((i % w) as i64 - gx).unsigned_abs(), ((i / w) as i64 - gy).unsigned_abs());
+            let (lo, hi) = (dx.min(dy), dx.max(dy));
+            STEP * hi + (DIAGONAL - STEP) * lo
+        };
+        let (path, _) = pathfinding::directed::astar::astar(
+            &ROBOT,
+            |&i: &usize| -> Vec<(usize, u64)> {
+                if i == ROBOT {
+                    entries.iter().map(|e| (e.cell, e.cost)).collect()
+                } else {
+                    self.safe_steps(i).collect()
+                }
+            },
+            h,
+            |&i| i == goal,
+        )?;
+        Some(path.into_iter().skip(1).collect())
+    }
+
+    /// Straight moves along a cell path from the robot at `at`: the first to the path's first
+    /// cell when the entry goes there straight through the last scan's region; then from the
+    /// anchor (the robot, or the last waypoint) to the farthest cell of the path, extending one
+    /// cell at a time while every cell the move's supercover touches is safe. The last
+    /// waypoint is the centre of the path's last cell. `None` if a move cannot be extended at
+    /// all (never for a path of safe neighbours).
+    fn compress(&self, at: Point, entries: &[Entry], path: &[usize]) -> Option<Vec<Point>> {
+        let centre = |i: usize| self.centre(self.global(i));
+        let first = *path.first()?;
+        let mut out = Vec::new();
+        let (mut anchor, mut next) = if entries.iter().any(|e| e.cell == first && e.direct) {
+            out.push(centre(first));
+            (centre(first), 1)
+        } else if at == centre(first) {
+            (at, 1)
+        } else {
+            (at, 0)
+        };
+        while next < path.len() {
+            let mut best = None;
+            for (j, &c) in path.iter().enumerate().skip(next) {
+                if !self.segment_is_safe(anchor, centre(c)) {
+                    break;
+                }
+                best = Some(j);
+            }
+            let j = best?;
+            anchor = centre(path[j]);
+            out.push(anchor);
+            next = j + 1;
+        }
+        Some(out)
+    }
+}
+
+/// Visits every cell whose closed square, grown by `eps` on every side, meets the closed
+/// segment `a b` (rounding may add a cell or so more, never drop one by more than a fraction
+/// of `eps`), row by row; stops as soon as `visit` returns false, and returns whether it never
+/// did.
+fn supercover(
+    res: f64,
+    a: Point,
+    b: Point,
+    eps: f64,
+    mut visit: impl FnMut([i64; 2]) -> bool,
+) -> bool {
+    let cell = |v: f64| (v / res).floor() as i64;
+    let (ylo, yhi) = (a[1].min(b[1]), a[1].max(b[1]));
+    for y in cell(ylo - eps)..=cell(yhi + eps) {
+        let (x0, x1) = if a[1] == b[1] {
+            (a[0].min(b[0]), a[0].max(b[0]))
+        } else {
+            let (band_lo, band_hi) = (y as f64 * res - eps, (y + 1) as f64 * res + eps);
+            let t = |v: f64| ((v - a[1]) / (b[1] - a[1])).clamp(0.0, 1.0);
+            let (xa, xb) = (a[0] + t(band_lo) * (b[0] - a[0]), a[0] + t(band_hi) * (b[0] - a[0]));
+            (xa.min(xb), xa.max(xb))
+        };
+        for x in cell(x0 - eps)..=cell(x1 + eps) {
+            if !visit([x, y]) {
+                return false;
+            }
+        }
+    }
+    true
+}
+
+/// The raster's cells in JSON: `[value, count]` runs.
+mod runs {
+    use serde::{Deserialize, Deserializer, Serialize, Serializer};
+
+    pub(super) fn serialize<S: Serializer>(cells: &[u8], s: S) -> Result<S::Ok, S::Error> {
+        let mut out: Vec<[u32; 2]> = Vec::new();
+        for &c in cells {
+            match out.last_mut() {
+                Some(r) if r[0] == u32::from(c) => r[1] += 1,
+                _ => out.push([u32::from(c), 1]),
+            }
+        }
+        out.serialize(s)
+    }
+
+    pub(super) fn deserialize<'de, D: Deserializer<'de>>(d: D) -> Result<Vec<u8>, D::Error> {
+        let runs: Vec<[u32; 2]> = Vec::deserialize(d)?;
+        let mut out = Vec::new();
+        for [v, n] in runs {
+            let v = u8::try_from(v).map_err(serde::de::Error::custom)?;
+            out.extend(std::iter::repeat_n(v, n as usize));
+        }
+        Ok(out)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::algorithm::visibility::VisibilityRegion;
+    use crate::geometry::EdgeId;
+    use rand::{RngExt, SeedableRng};
+
+    const E: EdgeId = EdgeId { ring: 0, index: 0 };
+
+    /// A rectangle's region seen from its middle, counter-clockwise from the lower-left
+    /// corner; `windows[k]` makes side k (bottom, right, top, left) a window.
+    fn rectangle(lo: Point, hi: Point, windows: [bool; 4]) -> PolygonObservation {
+        let polygon = vec![lo, [hi[0], lo[1]], hi, [lo[0], hi[1]]];
+        let boundary = (0..4)
+            .map(|k| {
+                let (from, to) = (polygon[k], polygon[(k + 1) % 4]);
+                if windows[k] {
+                    BoundaryPiece::Window { from, to, reflex: from, far: to }
+                } else {
+                    BoundaryPiece::Edge { from, to, edge: E }
+                }
+            })
+            .collect();
+        let at = [0.5 * (lo[0] + hi[0]), 0.5 * (lo[1] + hi[1])];
+        PolygonObservation { at, region: VisibilityRegion { viewpoint: at, polygon, boundary } }
+    }
+
+    fn raster_of(res: f64, views: &[&PolygonObservation]) -> Raster {
+        let mut r = Raster::new(res);
+        for v in views {
+            if let Some((lo, hi)) = r.add_view(&v.region.polygon, &v.region.boundary, v.at) {
+                r.update_safe(lo, hi, 0);
+            }
+        }
+        r
+    }
+
+    /// The cells of each state in the box `lo..=hi`.
+    fn cells_in(r: &Raster, lo: [i64; 2], hi: [i64; 2], state: u8) -> Vec<[i64; 2]> {
+        let mut out = Vec::new();
+        for y in lo[1]..=hi[1] {
+            for x in lo[0]..=hi[0] {
+                if r.state([x, y]) == state {
+                    out.push([x, y]);
+                }
+            }
+        }
+        out
+    }
+
+    /// A raster from rows of text, the top row first: `.` free, `#` occupied, anything else
+    /// unknown; cell (0, 0) is the bottom-left character. Safe bits for inflation `k`.
+    fn raster_from(res: f64, rows: &[&str], k: i64) -> Raster {
+        let mut r = Raster::new(res);
+        r.anchor = Some([0, 0]);
+        let h = rows.len() as i64;
+        let w = rows[0].len() as i64;
+        r.ensure([0, 0], [w - 1, h - 1]);
+        for (t, row) in rows.iter().enumerate() {
+            for (x, ch) in row.chars().enumerate() {
+                let i = r.local([x as i64, h - 1 - t as i64]).unwrap();
+                r.cells[i] = match ch {
+                    '.' => FREE,
+                    '#' => OCCUPIED,
+                    _ => UNKNOWN,
+                };
+            }
+        }
+        r.update_safe_everywhere(k);
+        r
+    }
+
+    #[test]
+    fn a_square_view_is_free_inside_and_occupied_along_its_walls() {
+        // Off the grid lines: the cells 1..=8 lie inside [0.03, 0.97]², cells 0 and 9 meet
+        // its sides.
+        let v = rectangle([0.03, 0.03], [0.97, 0.97], [false; 4]);
+        let r = raster_of(0.1, &[&v]);
+        let free = cells_in(&r, [-3, -3], [12, 12], FREE);
+        assert_eq!(free.len(), 64);
+        assert!(free.iter().all(|c| (1..=8).contains(&c[0]) && (1..=8).contains(&c[1])));
+        let occupied = cells_in(&r, [-3, -3], [12, 12], OCCUPIED);
+        assert_eq!(occupied.len(), 100 - 64);
+        assert!(occupied.iter().all(|c| c.iter().any(|&v| v == 0 || v == 9)));
+        // On the grid lines: a side at x = 0 touches the cells on both of its sides.
+        let v = rectangle([0.0, 0.0], [1.0, 1.0], [false; 4]);
+        let r = raster_of(0.1, &[&v]);
+        assert_eq!(cells_in(&r, [-3, -3], [12, 12], FREE).len(), 64);
+        assert_eq!(cells_in(&r, [-3, -3], [12, 12], OCCUPIED).len(), 12 * 12 - 64);
+        // Nothing but what the view saw is free, and the rest is unknown.
+        assert_eq!(r.state([-3, 5]), UNKNOWN);
+        assert_eq!(r.state([40, 5]), UNKNOWN);
+    }
+
+    #[test]
+    fn a_window_leaves_its_cells_unknown_and_they_form_a_frontier() {
+        // The right side is a window: its cells (column 9, rows 1..=8) are neither free nor
+        // occupied; the corners, where walls meet it, are occupied.
+        let v = rectangle([0.03, 0.03], [0.97, 0.97], [false, true, false, false]);
+        let r = raster_of(0.1, &[&v]);
+        for y in 1..=8 {
+            assert_eq!(r.state([9, y]), UNKNOWN, "row {y}");
+        }
+        assert_eq!(r.state([9, 0]), OCCUPIED);
+        assert_eq!(r.state([9, 9]), OCCUPIED);
+        // One frontier: 8 cells at x = 0.95, centroid (0.95, 0.5); the robot's cell (5, 4)
+        // has its centre at (0.55, 0.45), 0.4 from the nearest frontier cell (9, 4).
+        let f = r.frontiers([0.52, 0.47], &ExploreLiteParams::default());
+        assert_eq!(f.len(), 1);
+        assert_eq!(f[0].size, 8);
+        assert!((f[0].centroid[0] - 0.95).abs() < 1e-12 && (f[0].centroid[1] - 0.5).abs() < 1e-12);
+        assert!((f[0].min_distance - 0.4).abs() < 1e-12);
+        assert!((f[0].cost - (1e-3 * 0.4 - 8.0 * 0.1)).abs() < 1e-12);
+        // Shorter than min_frontier_size (0.8 m < 0.9 m): dropped.
+        let p = ExploreLiteParams { min_frontier_size: 0.9, ..ExploreLiteParams::default() };
+        assert!(r.frontiers([0.52, 0.47], &p).is_empty());
+    }
+
+    #[test]
+    fn cells_a_window_crosses_are_free_when_another_view_holds_them_whole() {
+        // A sees [0.03, 0.97] with a window on its right; B sees [0.53, 1.47] with a window
+        // on its left. Each window runs inside the other view: no frontier at the seam.
+        let a = rectangle([0.03, 0.03], [0.97, 0.97], [false, true, false, false]);
+        let b = rectangle([0.53, 0.03], [1.47, 0.97], [false, false, false, true]);
+        for order in [[&a, &b], [&b, &a]] {
+            let r = raster_of(0.1, &order);
+            let free = cells_in(&r, [-3, -3], [20, 12], FREE);
+            assert_eq!(free.len(), 13 * 8, "columns 1..=13, rows 1..=8");
+            assert!(r.frontiers([0.52, 0.47], &ExploreLiteParams::default()).is_empty());
+        }
+    }
+
+    #[test]
+    fn a_wall_piece_marks_occupied_over_free() {
+        // A thin view along a wall piece that cuts through cells another view saw free (a
+        // wall is a true obstacle: occupied wins).
+        let a = rectangle([0.03, 0.03], [0.97, 0.97], [true; 4]);
+        let mut r = raster_of(0.1, &[&a]);
+        assert_eq!(r.state([4, 4]), FREE);
+        let wall = PolygonObservation {
+            at: [0.45, 0.45],
+            region: VisibilityRegion {
+                viewpoint: [0.45, 0.45],
+                polygon: vec![[0.45, 0.45], [0.65, 0.45], [0.45, 0.46]],
+                boundary: vec![
+                    BoundaryPiece::Partial { from: [0.45, 0.45], to: [0.65, 0.45], edge: E },
+                    BoundaryPiece::Frontier { from: [0.65, 0.45], to: [0.45, 0.46] },
+                    BoundaryPiece::Frontier { from: [0.45, 0.46], to: [0.45, 0.45] },
+                ],
+            },
+        };
+        r.add_view(&wall.region.polygon, &wall.region.boundary, wall.at);
+        for x in 4..=6 {
+            assert_eq!(r.state([x, 4]), OCCUPIED, "cell ({x}, 4)");
+        }
+        assert_eq!(r.state([3, 4]), FREE);
+        assert_eq!(r.state([4, 3]), FREE);
+    }
+
+    #[test]
+    fn clusters_grow_by_eight_connectivity_and_rank_by_cost() {
+        // 1 m cells, the top row first (y = 6 down to 0); the robot stands in cell (1, 1).
+        // Frontier cells, unknown with a free 4-neighbour: (8, 5), (8, 4), (7, 2), (6, 1).
+        // Not frontier cells: (9, 5), (9, 3), (7, 1), (8, 1) (no free 4-neighbour).
+        let rows = [
+            "##########",
+            "#.......??",
+            "#.......?#",
+            "#.......#?",
+            "#......?##",
+            "#.....???#",
+            "##########",
+        ];
+        let r = raster_from(1.0, &rows, 0);
+        let p = ExploreLiteParams { min_frontier_size: 0.0, ..ExploreLiteParams::default() };
+        let f = r.frontiers([1.5, 1.5], &p);
+        // Clusters by 8-connectivity: {(8, 5), (8, 4)} and {(7, 2), (6, 1)} (diagonal).
+        assert_eq!(f.len(), 2, "{f:?}");
+        let mut sizes: Vec<usize> = f.iter().map(|c| c.size).collect();
+        sizes.sort_unstable();
+        assert_eq!(sizes, [2, 2]);
+        // Equal sizes: the nearer wins. Robot cell centre (1.5, 1.5).
+        let d_low = (6.5f64 - 1.5).hypot(0.0); // (6, 1) centre (6.5, 1.5)
+        let d_high = (8.5f64 - 1.5).hypot(4.5 - 1.5); // (8, 4) centre (8.5, 4.5)
+        assert!((f[0].min_distance - d_low).abs() < 1e-12, "{f:?}");
+        assert!((f[1].min_distance - d_high).abs() < 1e-12);
+        assert_eq!(f[0].centroid, [7.0, 2.0]);
+        assert_eq!(f[1].centroid, [8.5, 5.0]);
+        assert!((f[0].cost - (1e-3 * d_low - 2.0)).abs() < 1e-12);
+        // The default min_frontier_size (0.5 m, half a cell here) keeps both.
+        assert_eq!(r.frontiers([1.5, 1.5], &ExploreLiteParams::default()).len(), 2);
+        // Three cells needed: none left.
+        let p = ExploreLiteParams { min_frontier_size: 2.5, ..ExploreLiteParams::default() };
+        assert!(r.frontiers([1.5, 1.5], &p).is_empty());
+    }
+
+    #[test]
+    fn the_bigger_frontier_wins_over_the_nearer_one() {
+        let rows =
+            ["#????????#", "#........#", "#........#", "#........#", "?........#", "##########"];
+        let r = raster_from(0.1, &rows, 0);
+        let p = ExploreLiteParams { min_frontier_size: 0.0, ..ExploreLiteParams::default() };
+        let f = r.frontiers([0.15, 0.15], &p);
+        assert_eq!(f.len(), 2);
+        assert_eq!(f[0].size, 8);
+        assert_eq!(f[1].size, 1);
+        let cost = |size: f64, d: f64| 1e-3 * d - size * 0.1;
+        assert!((f[0].cost - cost(8.0, f[0].min_distance)).abs() < 1e-12);
+        assert!((f[1].cost - cost(1.0, 0.1)).abs() < 1e-12);
+    }
+
+    /// Whether every cell whose closed square lies within `d` of `p` is safe (brute force).
+    fn safe_around(r: &Raster, p: Point, d: f64) -> bool {
+        let c = r.cell_of(p);
+        (-1..=1).all(|dy| {
+            (-1..=1).all(|dx| {
+                let q = [c[0] + dx, c[1] + dy];
+                let (lo, hi) = (r.centre(q), r.centre(q));
+                let (lo, hi) = (
+                    [lo[0] - 0.5 * r.res, lo[1] - 0.5 * r.res],
+                    [hi[0] + 0.5 * r.res, hi[1] + 0.5 * r.res],
+                );
+                let gap = [
+                    (lo[0] - p[0]).max(p[0] - hi[0]).max(0.0),
+                    (lo[1] - p[1]).max(p[1] - hi[1]).max(0.0),
+                ];
+                gap[0].max(gap[1]) > d || r.is_safe(q)
+            })
+        })
+    }
+
+    /// A seeded raster: free cells with random occupied blocks.
+    fn random_raster(seed: u64, k: i64) -> Raster {
+        let mut rng = rand_chacha::ChaCha8Rng::seed_from_u64(seed);
+        let (w, h) = (60usize, 40usize);
+        let mut grid = vec![vec!['.'; w]; h];
+        for row in &mut grid {
+            row[0] = '#';
+            row[w - 1] = '#';
+        }
+        grid[0] = vec!['#'; w];
+        grid[h - 1] = vec!['#'; w];
+        for _ in 0..25 {
+            let (x, y) = (rng.random_range(1..w - 6), rng.random_range(1..h - 6));
+            let (bw, bh) = (rng.random_range(1..6), rng.random_range(1..6));
+            for row in grid.iter_mut().skip(y).take(bh) {
+                for c in row.iter_mut().skip(x).take(bw) {
+                    *c = '#';
+                }
+            }
+        }
+        let rows: Vec<String> = grid.iter().rev().map(|r| r.iter().collect()).collect();
+        let refs: Vec<&str> = rows.iter().map(String::as_str).collect();
+        raster_from(0.05, &refs, k)
+    }
+
+    #[test]
+    fn compressed_moves_stay_in_safe_cells() {
+        let mut checked = 0;
+        for seed in 0..12 {
+            for k in [0, 2] {
+                let r = random_raster(seed, k);
+                let mut rng = rand_chacha::ChaCha8Rng::seed_from_u64(100 + seed);
+                let safe: Vec<usize> =
+                    (0..r.cells.len()).filter(|&i| r.cells[i] & SAFE != 0).collect();
+                if safe.len() < 2 {
+                    continue;
+                }
+                for _ in 0..10 {
+                    let s = safe[rng.random_range(0..safe.len())];
+                    // The robot anywhere in its cell, not at the centre.
+                    let c = r.centre(r.global(s));
+                    let at = [
+                        c[0] + rng.random_range(-0.45..0.45) * r.res,
+                        c[1] + rng.random_range(-0.45..0.45) * r.res,
+                    ];
+                    if !r.segment_is_safe(at, c) {
+                        continue;
+                    }
+                    let entries = [Entry { cell: s, cost: r.step_cost(at, c), direct: false }];
+                    let reach = r.reachable(&entries);
+                    let goal = safe[rng.random_range(0..safe.len())];
+                    let Some(path) = r.astar(&entries, goal) else {
+                        assert!(!reach[goal], "A* found no path to a reachable cell");
+                        continue;
+                    };
+                    assert!(reach[goal]);
+                    let moves = r.compress(at, &entries, &path).unwrap();
+                    assert_eq!(*moves.last().unwrap(), r.centre(r.global(goal)));
+                    assert!(moves.len() <= path.len());
+                    let mut from = at;
+                    for &to in &moves {
+                        // An independent check: points every res/64 along the move, and the
+                        // cells within a hair of each.
+                        let n = ((to[0] - from[0]).hypot(to[1] - from[1]) / r.res * 64.0)
+                            .ceil()
+                            .max(1.0) as usize;
+                        for i in 0..=n {
+                            let t = i as f64 / n as f64;
+                            let p =
+                                [from[0] + t * (to[0] - from[0]), from[1] + t * (to[1] - from[1])];
+                            assert!(
+                                safe_around(&r, p, 1e-9),
+                                "seed {seed} k {k}: {from:?} → {to:?} at {p:?}"
+                            );
+                        }
+                        from = to;
+                        checked += 1;
+                    }
+                }
+            }
+        }
+        assert!(checked > 100, "{checked} moves checked");
+    }
+
+    #[test]
+    fn the_supercover_holds_the_segment_and_little_more() {
+        let mut rng = rand_chacha::ChaCha8Rng::seed_from_u64(3);
+        let res = 0.05;
+        for _ in 0..300 {
+            let a = [rng.random_range(-2.0..2.0), rng.random_range(-2.0..2.0)];
+            let b = if rng.random_bool(0.2) {
+                [a[0], rng.random_range(-2.0..2.0)]
+            } else {
+                [rng.random_range(-2.0..2.0), rng.random_range(-2.0..2.0)]
+            };
+            let eps = 1e-9;
+            let mut cells = BTreeSet::new();
+            supercover(res, a, b, eps, |c| {
+                cells.insert(c);
+                true
+            });
+            // Every point of the segment lies in a visited cell.
+            for i in 0..=2000 {
+                let t = f64::from(i) / 2000.0;
+                let p = [a[0] + t * (b[0] - a[0]), a[1] + t * (b[1] - a[1])];
+                let c = [(p[0] / res).floor() as i64, (p[1] / res).floor() as i64];
+                assert!(cells.contains(&c), "{a:?} {b:?}: {p:?}");
+            }
+            // Every visited cell's square comes within a few hairs of the segment.
+            for c in &cells {
+                let (x0, y0) = (c[0] as f64 * res, c[1] as f64 * res);
+                let sq = [[x0, y0], [x0 + res, y0], [x0 + res, y0 + res], [x0, y0 + res]];
+                let inside =
+                    |p: Point| p[0] >= x0 && p[0] <= x0 + res && p[1] >= y0 && p[1] <= y0 + res;
+                let d = if inside(a) || inside(b) {
+                    0.0
+                } else {
+                    (0..4)
+                        .map(|k| crate::geometry::segments_distance(a, b, sq[k], sq[(k + 1) % 4]))
+                        .fold(f64::INFINITY, f64::min)
+                };
+                assert!(d <= 4.0 * eps, "{a:?} {b:?}: cell {c:?} at {d}");
+            }
+        }
+    }
+
+    #[test]
+    fn safe_cells_keep_the_inflation_from_everything_not_free() {
+        let rows = ["..........", "..........", "....#.....", "..........", ".........."];
+        let r = raster_from(1.0, &rows, 1);
+        // k = 1: safe when the 3 × 3 block around is free and inside the box.
+        assert!(r.is_safe([1, 1]) && r.is_safe([7, 2]));
+        assert!(!r.is_safe([3, 2]) && !r.is_safe([5, 3]) && !r.is_safe([4, 1]));
+        assert!(!r.is_safe([0, 2]), "the box's edge: unknown beyond");
+        let r0 = raster_from(1.0, &rows, 0);
+        assert!(r0.is_safe([3, 2]) && !r0.is_safe([4, 2]));
+    }
+
+    #[test]
+    fn a_goal_near_a_blacklisted_one_is_blacklisted_too() {
+        let mut s = ExploreLite::for_robot(&RobotSetup::default());
+        s.blacklist.push([1.0, 1.0]);
+        assert!(s.on_blacklist([1.0 + 4.9 * 0.05, 1.0 - 4.9 * 0.05]));
+        assert!(!s.on_blacklist([1.0 + 5.1 * 0.05, 1.0]));
+    }
+
+    #[test]
+    fn parameters_are_checked() {
+        let setup = RobotSetup::default();
+        let bad = ExploreLiteParams { resolution: 0.0, ..ExploreLiteParams::default() };
+        assert!(matches!(
+            ExploreLite::with_params(&setup, bad),
+            Err(InvalidExploreLiteParams::Resolution(_))
+        ));
+        let bad = ExploreLiteParams { gain_scale: f64::NAN, ..ExploreLiteParams::default() };
+        assert!(ExploreLite::with_params(&setup, bad).is_err());
+        let ok = ExploreLite::with_params(&setup, ExploreLiteParams::default()).unwrap();
+        assert_eq!(ok, ExploreLite::for_robot(&setup));
+    }
+
+    #[test]
+    fn a_frontier_it_cannot_get_closer_to_is_blacklisted_and_it_is_done() {
+        // A closet 0.3 × 0.3 with a window on its right, seen from inside: the frontier's
+        // nearest free cell is where the robot stands, so scanning there again would see
+        // nothing new.
+        let v = rectangle([0.0, 0.0], [0.3, 0.3], [false, true, false, false]);
+        let mut s = ExploreLite::with_params(
+            &RobotSetup::default(),
+            ExploreLiteParams { resolution: 0.1, min_frontier_size: 0.0, ..Default::default() },
+        )
+        .unwrap();
+        assert_eq!(s.act(&PolygonFeedback::Start { at: v.at }), Action::Scan);
+        assert_eq!(s.act(&PolygonFeedback::Scanned(v)), Action::Done);
+        assert_eq!(s.blacklisted().len(), 1);
+    }
+}
