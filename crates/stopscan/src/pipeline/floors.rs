@@ -50,7 +50,7 @@ impl Default for FloorsOptions {
             data: None,
             offices: 12,
             seed: 0,
-            strategies: ["depth_first", "nearest_frontier", "greedy_nbv", "cost_aware"]
+            strategies: ["depth_first", "nearest_frontier", "greedy_nbv", "explore_lite", "cost_aware"]
                 .map(String::from)
                 .to_vec(),
             footprint: Footprint::Disc { radius: 0.2 },
