@@ -13,6 +13,39 @@ use crate::kernel::Point;
 /// "No triangle": the other side of a domain edge.
 pub const NONE: u32 = u32::MAX;
 
+/// In [`Cell::adj`], marks a side that is a domain edge; the low bits index
+/// [`Mesh::walls`].
+pub(crate) const WALL: u32 = 1 << 31;
+
+/// The most triangles a mesh may have: [`Cell::adj`] packs a neighbour's index with the
+/// shared side's number (2 bits) below [`WALL`]. (A polygon with holes has at least n − 2
+/// triangles for n vertices, so vertex indices stay below [`WALL`] too.)
+const MAX_TRIANGLES: usize = 1 << 29;
+
+/// One triangle as the triangular expansion reads it: its corners as indices into
+/// [`Mesh::coords`] and what lies across each side, 24 bytes. Side `k` (opposite corner `k`)
+/// leads to triangle `adj[k] >> 2` through that triangle's side `adj[k] & 3`, or, when
+/// `adj[k]` has the [`WALL`] bit, is the domain edge `walls[adj[k] & !WALL]`.
+#[derive(Debug, Clone, Copy)]
+pub(crate) struct Cell {
+    /// The corners, counter-clockwise, as indices into [`Mesh::coords`].
+    pub(crate) c: [u32; 3],
+    /// Across each side: neighbour and mirror side, or the domain edge.
+    pub(crate) adj: [u32; 3],
+}
+
+/// A domain edge as the expansion reports it: its ends (vertex indices) and its name, so
+/// that a piece needs no search of the rings.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub(crate) struct Wall {
+    /// The first vertex (the edge runs `start → end`, free space on its left).
+    pub(crate) start: u32,
+    /// The next vertex of the ring.
+    pub(crate) end: u32,
+    /// The edge.
+    pub(crate) edge: EdgeId,
+}
+
 #[derive(Debug, Clone, Copy)]
 struct Vertex {
     pos: Point2<f64>,
@@ -35,6 +68,9 @@ pub enum TriangulationError {
     /// spade refused a vertex (out of its range); a validated domain never triggers this.
     #[error("the triangulation rejected a vertex: {0}")]
     Insertion(String),
+    /// More triangles than the compact mesh can number (2^29).
+    #[error("the triangulation has {0} triangles, more than the 2^29 the mesh can hold")]
+    TooLarge(usize),
 }
 
 /// Where a point lies in the mesh.
@@ -68,6 +104,13 @@ pub struct Mesh {
     /// For each vertex, a triangle `t` and index `i` with `tri[t][i] = v` and the domain edge
     /// `v → next(v)` as the triangle's edge `tri[t][i] → tri[t][i+1]`.
     pub(crate) vertex_fan: Vec<(u32, u8)>,
+    /// `cells[t]`: triangle `t` packed for the expansion ([`Cell`]).
+    pub(crate) cells: Vec<Cell>,
+    /// The vertex coordinates again, numbered in the order the (renumbered) triangles first
+    /// use them, so that a triangle's corners lie near its neighbours' in memory.
+    pub(crate) coords: Vec<Point>,
+    /// The domain edges, in the order the (renumbered) triangles first meet them.
+    pub(crate) walls: Vec<Wall>,
     face_map: Vec<u32>,
     /// Spade's first free-space triangle, renumbered ([`Mesh::first_triangle`]).
     first: u32,
@@ -133,11 +176,18 @@ impl Mesh {
             nbr: Vec::new(),
             mirror: Vec::new(),
             vertex_fan: Vec::new(),
+            cells: Vec::new(),
+            coords: Vec::new(),
+            walls: Vec::new(),
             face_map: Vec::new(),
             first: NONE,
             cdt,
         };
         mesh.classify();
+        if mesh.tri.len() > MAX_TRIANGLES {
+            return Err(TriangulationError::TooLarge(mesh.tri.len()));
+        }
+        mesh.pack();
         Ok(mesh)
     }
 
@@ -259,6 +309,40 @@ impl Mesh {
             *t = map(*t);
         }
         self.first = map(self.first);
+    }
+
+    /// Builds [`Mesh::cells`] from the triangle arrays.
+    fn pack(&mut self) {
+        let mut at = vec![NONE; self.points.len()];
+        self.coords = Vec::with_capacity(self.points.len());
+        self.walls = Vec::with_capacity(self.points.len());
+        self.cells = Vec::with_capacity(self.tri.len());
+        for t in 0..self.tri.len() {
+            let v = self.tri[t];
+            let mut adj = [0; 3];
+            for (k, a) in adj.iter_mut().enumerate() {
+                *a = match self.nbr[t][k] {
+                    NONE => {
+                        self.walls.push(self.wall_of(v[(k + 1) % 3]));
+                        WALL | (self.walls.len() - 1) as u32
+                    }
+                    u => (u << 2) | u32::from(self.mirror[t][k]),
+                };
+            }
+            let c = v.map(|i| {
+                if at[i as usize] == NONE {
+                    at[i as usize] = self.coords.len() as u32;
+                    self.coords.push(self.points[i as usize]);
+                }
+                at[i as usize]
+            });
+            self.cells.push(Cell { c, adj });
+        }
+    }
+
+    /// The domain edge starting at vertex `v`.
+    pub(crate) fn wall_of(&self, v: u32) -> Wall {
+        Wall { start: v, end: self.ring_next(v), edge: self.edge_of(v) }
     }
 
     /// The free-space triangle spade lists first (before [`Mesh::renumber`]): a fixed
