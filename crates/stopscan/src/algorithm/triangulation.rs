@@ -22,16 +22,22 @@ pub(crate) const WALL: u32 = 1 << 31;
 /// triangles for n vertices, so vertex indices stay below [`WALL`] too.)
 const MAX_TRIANGLES: usize = 1 << 29;
 
-/// One triangle as the triangular expansion reads it: its corners as indices into
-/// [`Mesh::coords`] and what lies across each side, 24 bytes. Side `k` (opposite corner `k`)
-/// leads to triangle `adj[k] >> 2` through that triangle's side `adj[k] & 3`, or, when
-/// `adj[k]` has the [`WALL`] bit, is the domain edge `walls[adj[k] & !WALL]`.
+/// One triangle as the triangular expansion reads it, 24 bytes: per side `k` (opposite
+/// corner `k`), what lies across it and the far corner there. Side `k` leads to triangle
+/// `adj[k] >> 2` through that triangle's side `adj[k] & 3`, whose opposite corner is
+/// `coords[opp[k]]`; when `adj[k]` has the [`WALL`] bit, side `k` is the domain edge
+/// `walls[adj[k] & !WALL]` (and `opp[k]` is 0).
+///
+/// With the far corner here, one expansion step needs the next triangle's cell and the far
+/// corner's coordinates, and both addresses are known at once, so the two loads overlap
+/// instead of waiting for each other.
 #[derive(Debug, Clone, Copy)]
 pub(crate) struct Cell {
-    /// The corners, counter-clockwise, as indices into [`Mesh::coords`].
-    pub(crate) c: [u32; 3],
     /// Across each side: neighbour and mirror side, or the domain edge.
     pub(crate) adj: [u32; 3],
+    /// The corner of the neighbour opposite the shared side, as an index into
+    /// [`Mesh::coords`].
+    pub(crate) opp: [u32; 3],
 }
 
 /// A domain edge as the expansion reports it: its ends (vertex indices) and its name, so
@@ -111,6 +117,8 @@ pub struct Mesh {
     pub(crate) coords: Vec<Point>,
     /// The domain edges, in the order the (renumbered) triangles first meet them.
     pub(crate) walls: Vec<Wall>,
+    /// `walls[wall_at[v]]` is the domain edge starting at vertex `v`.
+    wall_at: Vec<u32>,
     face_map: Vec<u32>,
     /// Spade's first free-space triangle, renumbered ([`Mesh::first_triangle`]).
     first: u32,
@@ -179,6 +187,7 @@ impl Mesh {
             cells: Vec::new(),
             coords: Vec::new(),
             walls: Vec::new(),
+            wall_at: Vec::new(),
             face_map: Vec::new(),
             first: NONE,
             cdt,
@@ -313,31 +322,44 @@ impl Mesh {
 
     /// Builds [`Mesh::cells`] from the triangle arrays.
     fn pack(&mut self) {
+        // Coordinates in the order the triangles first use them.
         let mut at = vec![NONE; self.points.len()];
         self.coords = Vec::with_capacity(self.points.len());
-        self.walls = Vec::with_capacity(self.points.len());
-        self.cells = Vec::with_capacity(self.tri.len());
-        for t in 0..self.tri.len() {
-            let v = self.tri[t];
-            let mut adj = [0; 3];
-            for (k, a) in adj.iter_mut().enumerate() {
-                *a = match self.nbr[t][k] {
-                    NONE => {
-                        self.walls.push(self.wall_of(v[(k + 1) % 3]));
-                        WALL | (self.walls.len() - 1) as u32
-                    }
-                    u => (u << 2) | u32::from(self.mirror[t][k]),
-                };
-            }
-            let c = v.map(|i| {
+        for v in &self.tri {
+            for &i in v {
                 if at[i as usize] == NONE {
                     at[i as usize] = self.coords.len() as u32;
                     self.coords.push(self.points[i as usize]);
                 }
-                at[i as usize]
-            });
-            self.cells.push(Cell { c, adj });
+            }
         }
+        self.walls = Vec::with_capacity(self.points.len());
+        self.wall_at = vec![NONE; self.points.len()];
+        self.cells = Vec::with_capacity(self.tri.len());
+        for t in 0..self.tri.len() {
+            let v = self.tri[t];
+            let (mut adj, mut opp) = ([0; 3], [0; 3]);
+            for k in 0..3 {
+                match self.nbr[t][k] {
+                    NONE => {
+                        adj[k] = WALL | self.walls.len() as u32;
+                        self.wall_at[v[(k + 1) % 3] as usize] = self.walls.len() as u32;
+                        self.walls.push(self.wall_of(v[(k + 1) % 3]));
+                    }
+                    u => {
+                        let m = self.mirror[t][k];
+                        adj[k] = (u << 2) | u32::from(m);
+                        opp[k] = at[self.tri[u as usize][m as usize] as usize];
+                    }
+                }
+            }
+            self.cells.push(Cell { adj, opp });
+        }
+    }
+
+    /// The index in [`Mesh::walls`] of the domain edge starting at vertex `v`.
+    pub(crate) fn wall_index(&self, v: u32) -> u32 {
+        self.wall_at[v as usize]
     }
 
     /// The domain edge starting at vertex `v`.

@@ -14,7 +14,7 @@
 
 use super::{BoundaryPiece, VisibilityError, VisibilityRegion};
 use crate::algorithm::shortest_path::walk;
-use crate::algorithm::triangulation::{Mesh, MeshLocation, NONE, WALL, Wall};
+use crate::algorithm::triangulation::{Mesh, MeshLocation, NONE, WALL};
 use crate::kernel::{Point, orient_sign};
 
 /// Reusable buffers for [`expand`].
@@ -28,23 +28,28 @@ pub struct Scratch {
     pieces: Vec<Piece>,
 }
 
-/// Side `k` of triangle `t`, entered with the view cone from the right bound `r` to the left
-/// bound `l` (input vertices; their coordinates, so that a step reads only the next
-/// triangle's [`Cell`]).
+/// A triangle side `er → el` (counter-clockwise in the triangle being left), entered with the
+/// view cone from the right bound `r` to the left bound `l` (input vertices). It carries what
+/// its step needs: the coordinates, and the side's entry of the triangle's [`Cell`] (what lies
+/// across, and the far corner there), read when the cone was made.
 #[derive(Debug, Clone, Copy)]
 struct Cone {
     r: Point,
     l: Point,
-    t: u32,
-    k: u8,
+    er: Point,
+    el: Point,
+    across: u32,
+    opp: u32,
 }
 
 #[derive(Debug, Clone, Copy)]
 struct Piece {
     from: Point,
     to: Point,
-    /// The domain edge the piece lies on, with its ends' coordinates.
-    wall: Wall,
+    /// The domain edge the piece lies on (an index into [`Mesh::walls`], read only when the
+    /// region is assembled, where the reads of successive pieces overlap), with its ends'
+    /// coordinates.
+    wall: u32,
     wall_from: Point,
     wall_to: Point,
     full: bool,
@@ -69,8 +74,10 @@ pub fn expand(
     scratch.starts.clear();
     let starts = &mut scratch.starts;
     let push_start = |t: u32, k: u8, starts: &mut Vec<Cone>| {
-        let p = mesh.cells[t as usize].c.map(|i| mesh.coords[i as usize]);
-        starts.push(Cone { r: p[(k as usize + 1) % 3], l: p[(k as usize + 2) % 3], t, k });
+        let (v, k) = (tri[t as usize], k as usize);
+        let (er, el) = (pts[v[(k + 1) % 3] as usize], pts[v[(k + 2) % 3] as usize]);
+        let cell = &mesh.cells[t as usize];
+        starts.push(Cone { r: er, l: el, er, el, across: cell.adj[k], opp: cell.opp[k] });
     };
     // Pieces along the domain edges through q itself (boundary queries), before/after.
     let mut lead: Option<Piece> = None;
@@ -93,7 +100,7 @@ pub fn expand(
         MeshLocation::BoundaryEdge(t, s) => {
             let v = tri[t as usize];
             let (a, b) = (v[(s as usize + 1) % 3], v[(s as usize + 2) % 3]);
-            let wall = mesh.wall_of(a);
+            let wall = mesh.wall_index(a);
             let (wall_from, wall_to) = (pts[a as usize], pts[b as usize]);
             lead = Some(Piece { from: q, to: wall_to, wall, wall_from, wall_to, full: false });
             push_start(t, (s + 1) % 3, starts);
@@ -106,7 +113,7 @@ pub fn expand(
             lead = Some(Piece {
                 from: q,
                 to: pts[next as usize],
-                wall: mesh.wall_of(v),
+                wall: mesh.wall_index(v),
                 wall_from: q,
                 wall_to: pts[next as usize],
                 full: true,
@@ -120,7 +127,7 @@ pub fn expand(
                     tail = Some(Piece {
                         from: pts[prev as usize],
                         to: q,
-                        wall: mesh.wall_of(prev),
+                        wall: mesh.wall_index(prev),
                         wall_from: pts[prev as usize],
                         wall_to: q,
                         full: true,
@@ -150,23 +157,17 @@ pub fn expand(
 /// The depth-first expansion from one start cone, appending pieces in CCW order. Returns
 /// whether a vertex lay exactly on a bounding ray.
 ///
-/// Each step reads the cell of the triangle it enters and nothing else: the bounds travel as
-/// coordinates, and a bound is the edge's own vertex exactly when their coordinates are equal
-/// (a valid domain has no two vertices at one point).
+/// A step reads the far corner's coordinates and the next triangle's cell, both addressed by
+/// the cone itself. The bounds travel as coordinates, and a bound is the edge's own vertex
+/// exactly when their coordinates are equal (a valid domain has no two vertices at one point).
 #[inline]
 fn run(mesh: &Mesh, q: Point, start: Cone, stack: &mut Vec<Cone>, pieces: &mut Vec<Piece>) -> bool {
     let mut collinear = false;
-    let (cells, coords, walls) = (&mesh.cells, &mesh.coords, &mesh.walls);
+    let (cells, coords) = (&mesh.cells, &mesh.coords);
     stack.push(start);
-    while let Some(Cone { r: pr, l: pl, t, k }) = stack.pop() {
-        let cell = &cells[t as usize];
-        let across = cell.adj[k as usize];
+    while let Some(Cone { r: pr, l: pl, er: per, el: pel, across, opp }) = stack.pop() {
         if across & WALL != 0 {
-            let wall = walls[(across & !WALL) as usize];
-            let (per, pel) = (
-                coords[cell.c[(k as usize + 1) % 3] as usize],
-                coords[cell.c[(k as usize + 2) % 3] as usize],
-            );
+            let wall = across & !WALL;
             let full_r = pr == per || orient_sign(q, pr, per) == 0;
             let full_l = pl == pel || orient_sign(q, pl, pel) == 0;
             collinear |= (pr != per && full_r) || (pl != pel && full_l);
@@ -176,25 +177,44 @@ fn run(mesh: &Mesh, q: Point, start: Cone, stack: &mut Vec<Cone>, pieces: &mut V
             pieces.push(Piece { from, to, wall, wall_from: per, wall_to: pel, full });
             continue;
         }
-        let (n, m) = (across >> 2, (across & 3) as usize);
-        let pc = coords[cells[n as usize].c[m] as usize];
+        let (n, m) = ((across >> 2) as usize, (across & 3) as usize);
+        let pc = coords[opp as usize];
+        let cell = &cells[n];
+        // The sub-sides (e_r, c) and (c, e_l): sides m + 1 and m + 2 of the next triangle.
+        let (sub_r, sub_l) = ((m + 1) % 3, (m + 2) % 3);
+        let right = |l: Point| Cone {
+            r: pr,
+            l,
+            er: per,
+            el: pc,
+            across: cell.adj[sub_r],
+            opp: cell.opp[sub_r],
+        };
+        let left = |r: Point| Cone {
+            r,
+            l: pl,
+            er: pc,
+            el: pel,
+            across: cell.adj[sub_l],
+            opp: cell.opp[sub_l],
+        };
         let sr = orient_sign(q, pr, pc);
         if sr == 0 {
             collinear = true;
         }
         if sr <= 0 {
             // c on or right of R: only the left sub-side (c, e_l) is seen.
-            stack.push(Cone { r: pr, l: pl, t: n, k: ((m + 2) % 3) as u8 });
+            stack.push(left(pr));
             continue;
         }
         let sl = orient_sign(q, pl, pc);
         collinear |= sl == 0;
         if sl >= 0 {
             // c on or left of L: only the right sub-side (e_r, c) is seen.
-            stack.push(Cone { r: pr, l: pl, t: n, k: ((m + 1) % 3) as u8 });
+            stack.push(right(pl));
         } else {
-            stack.push(Cone { r: pc, l: pl, t: n, k: ((m + 2) % 3) as u8 });
-            stack.push(Cone { r: pr, l: pc, t: n, k: ((m + 1) % 3) as u8 });
+            stack.push(left(pc));
+            stack.push(right(pc));
         }
     }
     collinear
@@ -213,7 +233,8 @@ fn ray_hit(q: Point, through: Point, a: Point, b: Point) -> Point {
 fn assemble(mesh: &Mesh, q: Point, pieces: &[Piece], collinear: bool, out: &mut VisibilityRegion) {
     let n = pieces.len();
     for (i, p) in pieces.iter().enumerate() {
-        let edge = p.wall.edge;
+        let wall = &mesh.walls[p.wall as usize];
+        let edge = wall.edge;
         if out.polygon.last() != Some(&p.from) {
             out.polygon.push(p.from);
         }
@@ -229,8 +250,8 @@ fn assemble(mesh: &Mesh, q: Point, pieces: &[Piece], collinear: bool, out: &mut 
         if np.from != p.to {
             // Which ends of the gap are domain vertices (a piece ends exactly on its edge's
             // vertex or at a constructed point).
-            let va = (p.wall_to == p.to).then_some(p.wall.end);
-            let vb = (np.wall_from == np.from).then_some(np.wall.start);
+            let va = (p.wall_to == p.to).then_some(wall.end);
+            let vb = (np.wall_from == np.from).then(|| mesh.walls[np.wall as usize].start);
             if collinear
                 || va.zip(vb).is_some_and(|(v, w)| mesh.ring_next(w) == v || mesh.ring_next(v) == w)
             {
