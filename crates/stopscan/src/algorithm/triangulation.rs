@@ -8,13 +8,12 @@ use spade::{
 };
 
 use crate::geometry::{Domain, EdgeId};
-use crate::kernel::Point;
+use crate::kernel::{Point, orient_sign};
 
 /// "No triangle": the other side of a domain edge.
 pub const NONE: u32 = u32::MAX;
 
-/// In [`Cell::adj`], marks a side that is a domain edge; the low bits index
-/// [`Mesh::walls`].
+/// In [`Cell::adj`], marks a side that is a domain edge; the low bits are the edge's ring.
 pub(crate) const WALL: u32 = 1 << 31;
 
 /// The most triangles a mesh may have: [`Cell::adj`] packs a neighbour's index with the
@@ -26,7 +25,8 @@ const MAX_TRIANGLES: usize = 1 << 29;
 /// corner `k`), what lies across it and the far corner there. Side `k` leads to triangle
 /// `adj[k] >> 2` through that triangle's side `adj[k] & 3`, whose opposite corner is
 /// `coords[opp[k]]`; when `adj[k]` has the [`WALL`] bit, side `k` is the domain edge
-/// `walls[adj[k] & !WALL]` (and `opp[k]` is 0).
+/// `EdgeId { ring: adj[k] & !WALL, index: opp[k] }`, so a piece of the region is named
+/// without reading anything else.
 ///
 /// With the far corner here, one expansion step needs the next triangle's cell and the far
 /// corner's coordinates, and both addresses are known at once, so the two loads overlap
@@ -36,20 +36,108 @@ pub(crate) struct Cell {
     /// Across each side: neighbour and mirror side, or the domain edge.
     pub(crate) adj: [u32; 3],
     /// The corner of the neighbour opposite the shared side, as an index into
-    /// [`Mesh::coords`].
+    /// [`Mesh::coords`] (at a domain edge: the edge's index in its ring).
     pub(crate) opp: [u32; 3],
 }
 
-/// A domain edge as the expansion reports it: its ends (vertex indices) and its name, so
-/// that a piece needs no search of the rings.
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub(crate) struct Wall {
-    /// The first vertex (the edge runs `start → end`, free space on its left).
-    pub(crate) start: u32,
-    /// The next vertex of the ring.
-    pub(crate) end: u32,
-    /// The edge.
-    pub(crate) edge: EdgeId,
+/// A uniform grid over the mesh's bounding box naming, for each cell, a triangle near it
+/// (with its corners as indices into [`Mesh::coords`]): where [`Mesh::locate`]'s walk starts.
+/// About two triangles per cell, so walks are a few steps long.
+#[derive(Debug, Default)]
+struct Grid {
+    lo: Point,
+    /// Cells per unit length, on each axis.
+    scale: [f64; 2],
+    side: [usize; 2],
+    starts: Vec<GridStart>,
+    /// Steps before a walk gives up (a visibility walk can circle in a constrained
+    /// triangulation).
+    max_steps: usize,
+}
+
+#[derive(Debug, Clone, Copy)]
+struct GridStart {
+    t: u32,
+    c: [u32; 3],
+}
+
+impl Grid {
+    /// `coord_at[v]`: the index of vertex `v` in [`Mesh::coords`].
+    fn new(mesh: &Mesh, coord_at: &[u32]) -> Self {
+        let n = mesh.tri.len();
+        if n == 0 {
+            return Self::default();
+        }
+        let (mut lo, mut hi) = ([f64::MAX; 2], [f64::MIN; 2]);
+        for p in &mesh.coords {
+            lo = [lo[0].min(p[0]), lo[1].min(p[1])];
+            hi = [hi[0].max(p[0]), hi[1].max(p[1])];
+        }
+        let (w, h) =
+            ((hi[0] - lo[0]).max(f64::MIN_POSITIVE), (hi[1] - lo[1]).max(f64::MIN_POSITIVE));
+        // Square cells, about n / 2 of them.
+        let cell = (w * h / (n as f64 / 2.0).max(1.0)).sqrt();
+        let side = [
+            ((w / cell).ceil() as usize).clamp(1, 1 << 15),
+            ((h / cell).ceil() as usize).clamp(1, 1 << 15),
+        ];
+        let scale = [side[0] as f64 / w, side[1] as f64 / h];
+        let mut grid =
+            Self { lo, scale, side, starts: Vec::new(), max_steps: 64 + 4 * (side[0] + side[1]) };
+        // Each triangle claims the cell of its centroid (the first to come keeps it) ...
+        let mut owner = vec![NONE; side[0] * side[1]];
+        for (t, v) in mesh.tri.iter().enumerate() {
+            let c = v.map(|i| mesh.points[i as usize]);
+            let centroid =
+                [(c[0][0] + c[1][0] + c[2][0]) / 3.0, (c[0][1] + c[1][1] + c[2][1]) / 3.0];
+            let g = grid.cell(centroid);
+            if owner[g] == NONE {
+                owner[g] = t as u32;
+            }
+        }
+        // ... and cells without one take a neighbour's, breadth first from the claimed ones.
+        let mut queue: std::collections::VecDeque<usize> =
+            (0..owner.len()).filter(|&g| owner[g] != NONE).collect();
+        while let Some(g) = queue.pop_front() {
+            let (x, y) = (g % side[0], g / side[0]);
+            let next = [
+                (x > 0).then(|| g - 1),
+                (x + 1 < side[0]).then_some(g + 1),
+                (y > 0).then(|| g - side[0]),
+                (y + 1 < side[1]).then_some(g + side[0]),
+            ];
+            for h in next.into_iter().flatten() {
+                if owner[h] == NONE {
+                    owner[h] = owner[g];
+                    queue.push_back(h);
+                }
+            }
+        }
+        grid.starts = owner
+            .iter()
+            .map(|&t| GridStart { t, c: mesh.tri[t as usize].map(|i| coord_at[i as usize]) })
+            .collect();
+        grid
+    }
+
+    /// The cell holding `p` (clamped to the grid).
+    fn cell(&self, p: Point) -> usize {
+        let x = (((p[0] - self.lo[0]) * self.scale[0]) as usize).min(self.side[0] - 1);
+        let y = (((p[1] - self.lo[1]) * self.scale[1]) as usize).min(self.side[1] - 1);
+        y * self.side[0] + x
+    }
+
+    /// Where a walk to `p` starts; `None` outside the bounding box (and for an empty mesh).
+    fn start(&self, p: Point) -> Option<GridStart> {
+        if self.starts.is_empty() {
+            return None;
+        }
+        let (x, y) = ((p[0] - self.lo[0]) * self.scale[0], (p[1] - self.lo[1]) * self.scale[1]);
+        if !(x >= 0.0 && y >= 0.0 && x <= self.side[0] as f64 && y <= self.side[1] as f64) {
+            return None;
+        }
+        Some(self.starts[self.cell(p)])
+    }
 }
 
 #[derive(Debug, Clone, Copy)]
@@ -115,10 +203,8 @@ pub struct Mesh {
     /// The vertex coordinates again, numbered in the order the (renumbered) triangles first
     /// use them, so that a triangle's corners lie near its neighbours' in memory.
     pub(crate) coords: Vec<Point>,
-    /// The domain edges, in the order the (renumbered) triangles first meet them.
-    pub(crate) walls: Vec<Wall>,
-    /// `walls[wall_at[v]]` is the domain edge starting at vertex `v`.
-    wall_at: Vec<u32>,
+    /// Where point location starts its walk ([`Grid`]).
+    grid: Grid,
     face_map: Vec<u32>,
     /// Spade's first free-space triangle, renumbered ([`Mesh::first_triangle`]).
     first: u32,
@@ -186,8 +272,7 @@ impl Mesh {
             vertex_fan: Vec::new(),
             cells: Vec::new(),
             coords: Vec::new(),
-            walls: Vec::new(),
-            wall_at: Vec::new(),
+            grid: Grid::default(),
             face_map: Vec::new(),
             first: NONE,
             cdt,
@@ -196,7 +281,8 @@ impl Mesh {
         if mesh.tri.len() > MAX_TRIANGLES {
             return Err(TriangulationError::TooLarge(mesh.tri.len()));
         }
-        mesh.pack();
+        let coord_at = mesh.pack();
+        mesh.grid = Grid::new(&mesh, &coord_at);
         Ok(mesh)
     }
 
@@ -320,8 +406,9 @@ impl Mesh {
         self.first = map(self.first);
     }
 
-    /// Builds [`Mesh::cells`] from the triangle arrays.
-    fn pack(&mut self) {
+    /// Builds [`Mesh::cells`] and [`Mesh::coords`] from the triangle arrays;
+    /// returns each vertex's index in `coords`.
+    fn pack(&mut self) -> Vec<u32> {
         // Coordinates in the order the triangles first use them.
         let mut at = vec![NONE; self.points.len()];
         self.coords = Vec::with_capacity(self.points.len());
@@ -333,8 +420,6 @@ impl Mesh {
                 }
             }
         }
-        self.walls = Vec::with_capacity(self.points.len());
-        self.wall_at = vec![NONE; self.points.len()];
         self.cells = Vec::with_capacity(self.tri.len());
         for t in 0..self.tri.len() {
             let v = self.tri[t];
@@ -342,9 +427,9 @@ impl Mesh {
             for k in 0..3 {
                 match self.nbr[t][k] {
                     NONE => {
-                        adj[k] = WALL | self.walls.len() as u32;
-                        self.wall_at[v[(k + 1) % 3] as usize] = self.walls.len() as u32;
-                        self.walls.push(self.wall_of(v[(k + 1) % 3]));
+                        let e = self.edge_of(v[(k + 1) % 3]);
+                        adj[k] = WALL | e.ring;
+                        opp[k] = e.index;
                     }
                     u => {
                         let m = self.mirror[t][k];
@@ -355,16 +440,18 @@ impl Mesh {
             }
             self.cells.push(Cell { adj, opp });
         }
+        at
     }
 
-    /// The index in [`Mesh::walls`] of the domain edge starting at vertex `v`.
-    pub(crate) fn wall_index(&self, v: u32) -> u32 {
-        self.wall_at[v as usize]
+    /// The first vertex of a domain edge.
+    pub(crate) fn edge_start(&self, e: EdgeId) -> u32 {
+        self.ring_start[e.ring as usize] + e.index
     }
 
-    /// The domain edge starting at vertex `v`.
-    pub(crate) fn wall_of(&self, v: u32) -> Wall {
-        Wall { start: v, end: self.ring_next(v), edge: self.edge_of(v) }
+    /// The last vertex of a domain edge (the next of its ring).
+    pub(crate) fn edge_end(&self, e: EdgeId) -> u32 {
+        let (s, end) = (self.ring_start[e.ring as usize], self.ring_start[e.ring as usize + 1]);
+        if s + e.index + 1 == end { s } else { s + e.index + 1 }
     }
 
     /// The free-space triangle spade lists first (before [`Mesh::renumber`]): a fixed
@@ -403,10 +490,53 @@ impl Mesh {
     }
 
     /// Locates a point exactly.
+    ///
+    /// A point strictly inside a triangle is found by a short walk from the triangle the
+    /// [`Grid`] names for its cell; on an edge or a vertex, or when the walk meets a domain
+    /// edge, spade's hierarchy locates it (the same answers, spade picks which triangle names
+    /// an inner edge).
     pub fn locate(&self, p: Point) -> MeshLocation {
         if !(p[0].is_finite() && p[1].is_finite()) {
             return MeshLocation::Outside;
         }
+        if let Some(t) = self.walk_to(p) {
+            return MeshLocation::Face(t);
+        }
+        self.locate_spade(p)
+    }
+
+    /// The triangle that holds `p` strictly inside, found by a visibility walk from the grid's
+    /// start triangle; `None` when `p` is on an edge or vertex, or the walk meets a domain
+    /// edge or runs long.
+    fn walk_to(&self, p: Point) -> Option<u32> {
+        let start = self.grid.start(p)?;
+        let (mut t, mut c) = (start.t, start.c.map(|i| self.coords[i as usize]));
+        for step in 0..self.grid.max_steps {
+            let o = [
+                orient_sign(c[1], c[2], p),
+                orient_sign(c[2], c[0], p),
+                orient_sign(c[0], c[1], p),
+            ];
+            if o == [1, 1, 1] {
+                return Some(t);
+            }
+            // Leave through a side with p strictly beyond it (starting the search at a side
+            // that changes with the step, so the walk cannot circle), never through a wall.
+            let cell = &self.cells[t as usize];
+            let k =
+                (0..3).map(|j| (j + step) % 3).find(|&k| o[k] < 0 && cell.adj[k] & WALL == 0)?;
+            let (n, m) = (cell.adj[k] >> 2, (cell.adj[k] & 3) as usize);
+            let mut d = [[0.0; 2]; 3];
+            d[m] = self.coords[cell.opp[k] as usize];
+            d[(m + 1) % 3] = c[(k + 2) % 3];
+            d[(m + 2) % 3] = c[(k + 1) % 3];
+            (t, c) = (n, d);
+        }
+        None
+    }
+
+    /// [`Mesh::locate`] through spade's point location.
+    fn locate_spade(&self, p: Point) -> MeshLocation {
         match self.cdt.locate(Point2::new(p[0], p[1])) {
             PositionInTriangulation::OnFace(f) => match self.face_map[f.index()] {
                 NONE => MeshLocation::Outside,

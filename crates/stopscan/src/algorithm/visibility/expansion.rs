@@ -15,6 +15,7 @@
 use super::{BoundaryPiece, VisibilityError, VisibilityRegion};
 use crate::algorithm::shortest_path::walk;
 use crate::algorithm::triangulation::{Mesh, MeshLocation, NONE, WALL};
+use crate::geometry::EdgeId;
 use crate::kernel::{Point, orient_sign};
 
 /// Reusable buffers for [`expand`].
@@ -46,10 +47,8 @@ struct Cone {
 struct Piece {
     from: Point,
     to: Point,
-    /// The domain edge the piece lies on (an index into [`Mesh::walls`], read only when the
-    /// region is assembled, where the reads of successive pieces overlap), with its ends'
-    /// coordinates.
-    wall: u32,
+    /// The domain edge the piece lies on, with its ends' coordinates.
+    edge: EdgeId,
     wall_from: Point,
     wall_to: Point,
     full: bool,
@@ -100,12 +99,12 @@ pub fn expand(
         MeshLocation::BoundaryEdge(t, s) => {
             let v = tri[t as usize];
             let (a, b) = (v[(s as usize + 1) % 3], v[(s as usize + 2) % 3]);
-            let wall = mesh.wall_index(a);
+            let edge = mesh.edge_of(a);
             let (wall_from, wall_to) = (pts[a as usize], pts[b as usize]);
-            lead = Some(Piece { from: q, to: wall_to, wall, wall_from, wall_to, full: false });
+            lead = Some(Piece { from: q, to: wall_to, edge, wall_from, wall_to, full: false });
             push_start(t, (s + 1) % 3, starts);
             push_start(t, (s + 2) % 3, starts);
-            tail = Some(Piece { from: wall_from, to: q, wall, wall_from, wall_to, full: false });
+            tail = Some(Piece { from: wall_from, to: q, edge, wall_from, wall_to, full: false });
         }
         MeshLocation::Vertex(v) => {
             let (mut t, mut i) = mesh.vertex_fan[v as usize];
@@ -113,7 +112,7 @@ pub fn expand(
             lead = Some(Piece {
                 from: q,
                 to: pts[next as usize],
-                wall: mesh.wall_index(v),
+                edge: mesh.edge_of(v),
                 wall_from: q,
                 wall_to: pts[next as usize],
                 full: true,
@@ -127,7 +126,7 @@ pub fn expand(
                     tail = Some(Piece {
                         from: pts[prev as usize],
                         to: q,
-                        wall: mesh.wall_index(prev),
+                        edge: mesh.edge_of(prev),
                         wall_from: pts[prev as usize],
                         wall_to: q,
                         full: true,
@@ -167,14 +166,14 @@ fn run(mesh: &Mesh, q: Point, start: Cone, stack: &mut Vec<Cone>, pieces: &mut V
     stack.push(start);
     while let Some(Cone { r: pr, l: pl, er: per, el: pel, across, opp }) = stack.pop() {
         if across & WALL != 0 {
-            let wall = across & !WALL;
+            let edge = EdgeId { ring: across & !WALL, index: opp };
             let full_r = pr == per || orient_sign(q, pr, per) == 0;
             let full_l = pl == pel || orient_sign(q, pl, pel) == 0;
             collinear |= (pr != per && full_r) || (pl != pel && full_l);
             let from = if full_r { per } else { ray_hit(q, pr, per, pel) };
             let to = if full_l { pel } else { ray_hit(q, pl, per, pel) };
             let full = full_r && full_l;
-            pieces.push(Piece { from, to, wall, wall_from: per, wall_to: pel, full });
+            pieces.push(Piece { from, to, edge, wall_from: per, wall_to: pel, full });
             continue;
         }
         let (n, m) = ((across >> 2) as usize, (across & 3) as usize);
@@ -233,8 +232,7 @@ fn ray_hit(q: Point, through: Point, a: Point, b: Point) -> Point {
 fn assemble(mesh: &Mesh, q: Point, pieces: &[Piece], collinear: bool, out: &mut VisibilityRegion) {
     let n = pieces.len();
     for (i, p) in pieces.iter().enumerate() {
-        let wall = &mesh.walls[p.wall as usize];
-        let edge = wall.edge;
+        let edge = p.edge;
         if out.polygon.last() != Some(&p.from) {
             out.polygon.push(p.from);
         }
@@ -250,8 +248,8 @@ fn assemble(mesh: &Mesh, q: Point, pieces: &[Piece], collinear: bool, out: &mut 
         if np.from != p.to {
             // Which ends of the gap are domain vertices (a piece ends exactly on its edge's
             // vertex or at a constructed point).
-            let va = (p.wall_to == p.to).then_some(wall.end);
-            let vb = (np.wall_from == np.from).then(|| mesh.walls[np.wall as usize].start);
+            let va = (p.wall_to == p.to).then(|| mesh.edge_end(p.edge));
+            let vb = (np.wall_from == np.from).then(|| mesh.edge_start(np.edge));
             if collinear
                 || va.zip(vb).is_some_and(|(v, w)| mesh.ring_next(w) == v || mesh.ring_next(v) == w)
             {
