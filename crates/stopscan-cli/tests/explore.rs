@@ -191,7 +191,9 @@ fn explore_simplifies_ros_maps_as_map_import_does() {
         }
         let (i, r) = (json(&import), json(&run));
         assert_eq!(r["environment"]["vertices"], i["vertices"], "{tol:?}");
-        assert_eq!(r["metrics"]["coverage"], 1.0, "{tol:?}");
+        // The default window rule on a map closes windows shorter than two cells (pixel
+        // steps of a traced wall), so a little is left unseen without simplification.
+        assert!(f(&r["metrics"], "coverage") > 0.999, "{tol:?}");
         i["vertices"].as_u64().unwrap()
     };
     let (default, traced, wide) = (vertices(None), vertices(Some("0")), vertices(Some("0.15")));

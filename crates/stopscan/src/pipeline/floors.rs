@@ -50,9 +50,15 @@ impl Default for FloorsOptions {
             data: None,
             offices: 12,
             seed: 0,
-            strategies: ["depth_first", "nearest_frontier", "greedy_nbv", "explore_lite", "cost_aware"]
-                .map(String::from)
-                .to_vec(),
+            strategies: [
+                "depth_first",
+                "nearest_frontier",
+                "greedy_nbv",
+                "explore_lite",
+                "cost_aware",
+            ]
+            .map(String::from)
+            .to_vec(),
             footprint: Footprint::Disc { radius: 0.2 },
             range: 20.0,
             cost: CostModel { scan_time: 30.0, move_time: 0.0, speed: 0.5 },
