@@ -151,8 +151,8 @@ pub enum InvalidExploreLiteParams {
     },
 }
 
-/// An explore_lite-style frontier explorer (see the [module](self)). Its whole state is
-/// serialisable.
+/// An explore_lite-style frontier explorer (its module documents the model and the
+/// departures from explore_lite). Its whole state is serialisable.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 pub struct ExploreLite {
     params: ExploreLiteParams,
