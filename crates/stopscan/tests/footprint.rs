@@ -4,7 +4,7 @@
 //! narrower than the robot is never entered and what lies beyond it is reported apart.
 
 use stopscan::generate::{Instance, comb, office, pillar_forest, star};
-use stopscan::geometry::{Domain, segments_distance};
+use stopscan::geometry::{Domain, Location, segments_distance};
 use stopscan::kernel::Point;
 use stopscan::protocol::CostModel;
 use stopscan::protocol::polygon::{Footprint, RobotSetup, Sensor};
@@ -114,4 +114,120 @@ fn a_start_too_close_to_a_wall_is_refused_with_the_reason() {
         .unwrap_err()
         .to_string();
     assert!(e.contains("does not fit at the start (0.2, 2)"), "{e}");
+}
+
+/// Whether `a` sees `b` in `d`: the segment crosses no boundary edge and its middle is free
+/// (brute force, from the definition).
+fn sees(d: &Domain, a: Point, b: Point) -> bool {
+    let mid = [0.5 * (a[0] + b[0]), 0.5 * (a[1] + b[1])];
+    d.locate(mid) == Location::Interior
+        && d.rings().iter().all(|ring| {
+            (0..ring.len()).all(|i| {
+                let (p, q) = (ring[i], ring[(i + 1) % ring.len()]);
+                !stopscan::kernel::segments_intersect(a, b, p, q)
+                    || stopscan::kernel::on_segment(p, q, b)
+                    || stopscan::kernel::on_segment(p, q, a)
+            })
+        })
+}
+
+/// The least distance from `p` to the domain's boundary (brute force).
+fn wall_distance(d: &Domain, p: Point) -> f64 {
+    clearance_of(&[p, p], d)
+}
+
+/// The share of free sample points (a `step` grid) seen from some reachable sample point that
+/// some scan sees too: reachable points are free grid points (every `step`) at least `radius`
+/// from every wall (the domain here is one room-and-door component, so all are connected).
+fn brute_coverage(d: &Domain, radius: f64, scans: &[Point], step: f64) -> f64 {
+    let (mut lo, mut hi) = ([f64::INFINITY; 2], [f64::NEG_INFINITY; 2]);
+    for p in d.rings().iter().flatten() {
+        for k in 0..2 {
+            lo[k] = lo[k].min(p[k]);
+            hi[k] = hi[k].max(p[k]);
+        }
+    }
+    let grid = |s: f64| {
+        let mut out = Vec::new();
+        let mut y = lo[1] + 0.5 * s;
+        while y < hi[1] {
+            let mut x = lo[0] + 0.5 * s;
+            while x < hi[0] {
+                if d.locate([x, y]) == Location::Interior {
+                    out.push([x, y]);
+                }
+                x += s;
+            }
+            y += s;
+        }
+        out
+    };
+    let reachable: Vec<Point> =
+        grid(step).into_iter().filter(|&p| wall_distance(d, p) >= radius * 1.05).collect();
+    let (mut visible, mut covered) = (0usize, 0usize);
+    for p in grid(step) {
+        if reachable.iter().any(|&q| sees(d, q, p)) {
+            visible += 1;
+            if scans.iter().any(|&s| sees(d, s, p)) {
+                covered += 1;
+            }
+        }
+    }
+    covered as f64 / visible.max(1) as f64
+}
+
+#[test]
+fn a_door_seen_at_a_slant_is_still_passed() {
+    // Two 4 × 4 rooms; the only door (0.8 m, for a robot 0.4 m wide) is near the right wall,
+    // and the robot starts in the lower room's far corner: every window through the door is
+    // steep.
+    let outer = vec![
+        [0.0, 0.0],
+        [4.0, 0.0],
+        [4.0, 4.0],
+        [3.8, 4.0],
+        [3.8, 4.2],
+        [4.0, 4.2],
+        [4.0, 8.2],
+        [0.0, 8.2],
+        [0.0, 4.2],
+        [3.0, 4.2],
+        [3.0, 4.0],
+        [0.0, 4.0],
+    ];
+    let d = Domain::new(outer, vec![]).unwrap();
+    let s = setup(0.2);
+    let start = [0.4, 0.4];
+    let world = PolygonWorld::with_robot(d.clone(), None, &s.footprint, Some(start)).unwrap();
+    for name in REGISTRY.names() {
+        let mut strategy = build_for(name, &s).unwrap();
+        let r = run(&world, start, &s.cost, strategy.as_mut(), &mut NoObserver)
+            .unwrap_or_else(|e| panic!("{name}: {e}"));
+        let c = clearance_of(&r.path, &d);
+        assert!(c >= 0.2 * (1.0 - 1e-9), "{name}: clearance {c}");
+        let at: Vec<Point> = r.scans.iter().map(|o| o.at).collect();
+        let cov = brute_coverage(&d, 0.2, &at, 0.2);
+        assert!(cov >= 0.99, "{name}: {cov} of what the reachable region sees, scans at {at:?}");
+    }
+}
+
+#[test]
+fn office_floors_are_covered_with_a_footprint() {
+    // Generated offices with a 0.2 m robot and a 20 m range: every strategy sees at least 99%
+    // of what its reachable region sees (brute force on a 0.25 m grid).
+    for seed in [3u64, 8] {
+        let inst = office(2, (seed % 4) as usize, seed).unwrap();
+        let s = setup(0.2);
+        let world =
+            PolygonWorld::with_robot(inst.domain.clone(), Some(20.0), &s.footprint, None).unwrap();
+        let start = world.reach().unwrap().start();
+        for name in REGISTRY.names() {
+            let mut strategy = build_for(name, &s).unwrap();
+            let r = run(&world, start, &s.cost, strategy.as_mut(), &mut NoObserver)
+                .unwrap_or_else(|e| panic!("office {seed} / {name}: {e}"));
+            let at: Vec<Point> = r.scans.iter().map(|o| o.at).collect();
+            let cov = brute_coverage(&inst.domain, 0.2, &at, 0.25);
+            assert!(cov >= 0.99, "office {seed} / {name}: {cov}");
+        }
+    }
 }

@@ -92,19 +92,22 @@ impl CostAware {
         let mut best: Option<(f64, f64, Target)> = None;
         for (v, targets) in &open {
             let (pts, len) = self.known.route(cur, *v);
-            let at = self.known.views[*v].at;
             for t in targets {
-                let mut zs = vec![t.at];
-                zs.extend(self.known.stepped_back(t, &STEP_BACK));
+                // The window's own viewpoint (reached straight or bending around corners),
+                // then points stepped back from it that are reached straight.
+                let mut zs = vec![t.clone()];
+                zs.extend(
+                    self.known.stepped_back(t, &STEP_BACK).into_iter().map(|z| t.moved_to(z)),
+                );
                 let mut part: Option<(f64, f64, Target)> = None;
                 for z in zs {
-                    let gain = self.gain(z, &gaps).max(f64::MIN_POSITIVE);
-                    let dist = len + (z[0] - at[0]).hypot(z[1] - at[1]);
-                    let moves = pts.len() + 1;
+                    let gain = self.gain(z.at, &gaps).max(f64::MIN_POSITIVE);
+                    let dist = len + self.known.approach_length(&z);
+                    let moves = pts.len() + z.via.len() + 1;
                     let secs = cost.move_time * moves as f64 + dist / cost.speed + cost.scan_time;
                     let rate = gain / secs.max(f64::MIN_POSITIVE);
                     if part.as_ref().is_none_or(|b| rate > b.1) {
-                        part = Some((secs, rate, t.moved_to(z)));
+                        part = Some((secs, rate, z));
                     }
                 }
                 if let Some(p) = part

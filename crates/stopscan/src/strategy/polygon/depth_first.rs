@@ -92,8 +92,9 @@ impl DepthFirst {
                 return self.known.go(route, t);
             }
             self.stack.pop();
-            if let Some(&parent) = self.stack.last() {
-                route.push(self.known.views[parent].at);
+            if !self.stack.is_empty() {
+                // The search path is the tree of moves: back the way the robot came.
+                self.known.retreat(top, &mut route);
             }
         }
     }

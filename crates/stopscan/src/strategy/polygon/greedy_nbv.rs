@@ -49,13 +49,12 @@ impl GreedyNbv {
                 continue;
             }
             let (pts, len) = self.known.route(cur, v);
-            let at = self.known.views[v].at;
             let mut any = false;
             for k in 0..self.known.views[v].windows_len() {
                 let Some((t, open)) = self.known.window_target(v, k) else { continue };
                 any = true;
-                let dist = len + (t.at[0] - at[0]).hypot(t.at[1] - at[1]);
-                let moves = pts.len() + 1;
+                let dist = len + self.known.approach_length(&t);
+                let moves = pts.len() + t.via.len() + 1;
                 let secs = self.cost.move_time * moves as f64
                     + dist / self.cost.speed
                     + self.cost.scan_time;

@@ -14,6 +14,7 @@ use crate::protocol::Action;
 use crate::protocol::polygon::{Footprint, PolygonObservation, RobotSetup, Sensor};
 
 use super::PolygonFeedback;
+use super::approach::Approach;
 
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 pub(super) struct View {
@@ -24,6 +25,10 @@ pub(super) struct View {
     pub(super) pieces: Vec<BoundaryPiece>,
     windows: Vec<Window>,
     pub(super) parent: Option<usize>,
+    /// Waypoints of the move from the parent's viewpoint to this one, when it was not
+    /// straight ([`approach`](super::approach)); empty otherwise.
+    #[serde(default)]
+    via: Vec<Point>,
     /// Every window explored: covered parts only grow, so it stays so and is skipped.
     #[serde(default)]
     pub(super) explored: bool,
@@ -45,6 +50,10 @@ struct Window {
     tol: f64,
     covered: Intervals,
     checked: usize,
+    /// The piece is a range frontier (a chord of the sensor's range arc), not a window: the
+    /// sensor rule does not apply to it.
+    #[serde(default)]
+    range_frontier: bool,
     /// A scan was taken at a junction of this window: from now on only its gap middles are
     /// targeted (and marked handled), so each window costs at most one junction scan and
     /// the exploration ends.
@@ -53,11 +62,15 @@ struct Window {
 }
 
 /// A next viewpoint and the part of a window it is for.
-#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 pub(super) struct Target {
     pub(super) at: Point,
-    view: usize,
-    window: usize,
+    /// Waypoints from the view's viewpoint to `at` when a straight move there would not keep
+    /// the footprint's clearance (empty for a straight move).
+    #[serde(default)]
+    pub(super) via: Vec<Point>,
+    pub(super) view: usize,
+    pub(super) window: usize,
     gap: [f64; 2],
     /// Placed at a point of the window other than the gap's middle (a wall junction), from
     /// where the scan may see only part of the gap: it is not marked handled, but the window
@@ -69,8 +82,8 @@ pub(super) struct Target {
 impl Target {
     /// The same target with its viewpoint at `z` (a point of the same view's region that the
     /// robot can drive to straight from its viewpoint).
-    pub(super) fn moved_to(self, z: Point) -> Self {
-        Self { at: z, ..self }
+    pub(super) fn moved_to(&self, z: Point) -> Self {
+        Self { at: z, via: Vec::new(), ..self.clone() }
     }
 }
 
@@ -119,7 +132,8 @@ pub struct Skipped {
     /// Their total length, metres.
     pub below_rule_length: f64,
     /// Window parts no viewpoint with the footprint's clearance could be planned for from the
-    /// view that saw them.
+    /// view that saw them: none beside the part, and none from where the part is seen, that
+    /// the robot can reach inside that view's region, straight or bending around its corners.
     pub out_of_reach: usize,
 }
 
@@ -184,8 +198,8 @@ impl Known {
     pub(super) fn add(&mut self, obs: &PolygonObservation) -> usize {
         let pending = self.pending.take();
         // The view the scan's target belonged to: the target lies in its region.
-        let parent = pending.map(|t| t.view);
-        if let Some(t) = pending.filter(|t| !t.off_gap) {
+        let parent = pending.as_ref().map(|t| t.view);
+        if let Some(t) = pending.as_ref().filter(|t| !t.off_gap) {
             self.handled(t);
         }
         let (sensor, at) = (self.sensor, obs.at);
@@ -210,7 +224,17 @@ impl Known {
                             covered.push([0.0, 1.0]);
                         }
                     }
-                    Some(Window { piece, from, to, tol, covered, checked: 0, no_junction: false })
+                    let range_frontier = matches!(b, BoundaryPiece::Frontier { .. });
+                    Some(Window {
+                        piece,
+                        from,
+                        to,
+                        tol,
+                        covered,
+                        checked: 0,
+                        range_frontier,
+                        no_junction: false,
+                    })
                 }
                 _ => None,
             })
@@ -224,6 +248,7 @@ impl Known {
             pieces: obs.region.boundary.clone(),
             windows,
             parent,
+            via: pending.as_ref().map(|t| t.via.clone()).unwrap_or_default(),
             explored: false,
             rounding: rounding(magnitude(poly)),
         });
@@ -276,6 +301,24 @@ impl Known {
             let gap = cover::first_gap(covered, w.tol)?;
             let (dx, dy) = (to[0] - from[0], to[1] - from[1]);
             let open = (1.0 - covered.iter().map(|c| c[1] - c[0]).sum::<f64>()) * dx.hypot(dy);
+            // The sensor rule applies to what is left open of a window as to a whole window
+            // (not to range frontiers, whose arc comes as many short chords): an open part
+            // shorter than the sensor resolves from the view is not worth a trip.
+            if !self.sensor.excludes_nothing() && !w.range_frontier {
+                let at = self.views[view].at;
+                let p = [from[0] + gap[0] * dx, from[1] + gap[0] * dy];
+                let q = [from[0] + gap[1] * dx, from[1] + gap[1] * dy];
+                let d = (p[0] - at[0]).hypot(p[1] - at[1]).min((q[0] - at[0]).hypot(q[1] - at[1]));
+                let len = (q[0] - p[0]).hypot(q[1] - p[1]);
+                if len < self.sensor.min_window_at(d) {
+                    self.skipped.below_rule += 1;
+                    self.skipped.below_rule_length += len;
+                    let w = &mut self.views[view].windows[k];
+                    w.covered.push(gap);
+                    cover::merge(&mut w.covered);
+                    continue;
+                }
+            }
             let tm = match self.placement {
                 Placement::Middle => 0.5 * (gap[0] + gap[1]),
                 Placement::Far => {
@@ -285,14 +328,21 @@ impl Known {
                     if d(to) >= d(from) { gap[1] - inset } else { gap[0] + inset }
                 }
             };
-            let target = Target { at: self.views[view].at, view, window: k, gap, off_gap: false };
+            let target = Target {
+                at: self.views[view].at,
+                via: Vec::new(),
+                view,
+                window: k,
+                gap,
+                off_gap: false,
+            };
             let c = self.clearance(view);
             if c > 0.0 {
-                if let Some(at) = self.clear_point(view, from, to, gap, c) {
-                    return Some((Target { at, ..target }, open));
+                if let Some((at, via)) = self.clear_point(view, from, to, gap, c) {
+                    return Some((Target { at, via, ..target }, open));
                 }
                 self.skipped.out_of_reach += 1;
-                self.handled(target);
+                self.handled(&target);
                 continue;
             }
             let x = [from[0] + tm * dx, from[1] + tm * dy];
@@ -312,16 +362,23 @@ impl Known {
             // No point beside this part can be reached in a straight line, and a scan where the
             // robot stands would only repeat this view: the part counts as handled, as it would
             // after a scan for it, so that every scan makes progress.
-            self.handled(target);
+            self.handled(&target);
         }
     }
 
     /// A viewpoint for the part `gap` of the window `from`–`to` of `view` that a robot with
-    /// clearance `c` can drive to straight from the view's viewpoint: points of the part (its
-    /// middle first, then quarters and eighths) stepped `c` and more off the window into the
-    /// region, the first whose move keeps `c` from the region's boundary. From there the
-    /// robot looks through the window from a step back; what it cannot see from there is
-    /// left behind the new view's own windows.
+    /// clearance `c` can reach from the view's viewpoint, with the waypoints on the way
+    /// (empty for a straight move). In order of preference:
+    /// - points of the part (its middle first, then quarters and eighths) stepped `c` and
+    ///   more off the window into the region, the first whose straight move keeps `c` from
+    ///   the region's boundary; from there the robot looks through the window from a step
+    ///   back, and what it cannot see is left behind the new view's own windows;
+    /// - the same points, the first reached by a path that bends around the region's
+    ///   corners ([`Approach`]): a door seen at a slant;
+    /// - a point stepped off a corner of the region that sees the part across it, nearest
+    ///   the part under the widest angle first (at least [`MIN_LOOK_ANGLE`]): where the
+    ///   door is too steep to pass through in the region, the robot looks through it from
+    ///   in front.
     fn clear_point(
         &self,
         view: usize,
@@ -329,7 +386,7 @@ impl Known {
         to: Point,
         gap: [f64; 2],
         c: f64,
-    ) -> Option<Point> {
+    ) -> Option<(Point, Vec<Point>)> {
         let v = &self.views[view];
         let (dx, dy) = (to[0] - from[0], to[1] - from[1]);
         let len = dx.hypot(dy);
@@ -338,14 +395,43 @@ impl Known {
         }
         // The unit normal into the region (left of the window).
         let n = [-dy / len, dx / len];
-        [0.5, 0.25, 0.75, 0.125, 0.375, 0.625, 0.875].into_iter().find_map(|f| {
-            let t = gap[0] + f * (gap[1] - gap[0]);
-            let x = [from[0] + t * dx, from[1] + t * dy];
-            [1.0, 1.5, 2.5, 4.0]
-                .into_iter()
-                .map(|k| [x[0] + k * c * n[0], x[1] + k * c * n[1]])
-                .find(|&z| v.reaches(z) && v.clear(z, c) && !self.stood_at(z))
-        })
+        let beside: Vec<Point> = [0.5, 0.25, 0.75, 0.125, 0.375, 0.625, 0.875]
+            .into_iter()
+            .flat_map(|f| {
+                let t = gap[0] + f * (gap[1] - gap[0]);
+                let x = [from[0] + t * dx, from[1] + t * dy];
+                [1.0, 1.5, 2.5, 4.0]
+                    .into_iter()
+                    .map(move |k| [x[0] + k * c * n[0], x[1] + k * c * n[1]])
+            })
+            .filter(|&z| !self.stood_at(z))
+            .collect();
+        if let Some(&z) = beside.iter().find(|&&z| v.reaches(z) && v.clear(z, c)) {
+            return Some((z, Vec::new()));
+        }
+        let a = Approach::new(&v.polygon, c);
+        let tm = 0.5 * (gap[0] + gap[1]);
+        let mid = [from[0] + tm * dx, from[1] + tm * dy];
+        let corners = a.corners([v.at, mid]);
+        if let Some(p) = a.path(v.at, &corners, &beside) {
+            return Some((beside[p.goal], p.via));
+        }
+        let g = [
+            [from[0] + gap[0] * dx, from[1] + gap[0] * dy],
+            [from[0] + gap[1] * dx, from[1] + gap[1] * dy],
+        ];
+        // A look through the part from a corner must see it under a real angle: a corner on
+        // the window's own line (behind the viewpoint, say) would see nothing new.
+        let mut looks: Vec<(f64, Point)> = corners
+            .iter()
+            .filter(|&&z| !self.stood_at(z) && self.sees_within(view, z, g))
+            .map(|&z| (subtended(z, g), z))
+            .filter(|&(angle, _)| angle >= MIN_LOOK_ANGLE)
+            .collect();
+        looks.sort_by(|x, y| y.0.total_cmp(&x.0));
+        let looks: Vec<Point> = looks.into_iter().map(|x| x.1).collect();
+        let p = a.path(v.at, &corners, &looks)?;
+        Some((looks[p.goal], p.via))
     }
 
     /// The window segment a target is for, and the part of it (as points) still open.
@@ -444,15 +530,17 @@ impl Known {
             .into_iter()
             .map(|l: f64| l.max(floor))
             .map(|l| [point[0] + l * (dx + d * inward[0]), point[1] + l * (dy + d * inward[1])])
-            .find(|&z| v.reaches(z) && (c == 0.0 || v.clear(z, c)))
-            .unwrap_or(t.at);
-        Some(Target { at, off_gap: true, ..t })
+            .find(|&z| v.reaches(z) && (c == 0.0 || v.clear(z, c)));
+        Some(match at {
+            Some(at) => Target { at, via: Vec::new(), off_gap: true, ..t },
+            None => Target { off_gap: true, ..t },
+        })
     }
 
     /// Marks a target's window part as handled once a scan was taken for it, seen or not: a
     /// part no point near the window can see (a window grazing an obstacle) must not be
     /// tried again, so every scan makes progress and the exploration ends.
-    fn handled(&mut self, t: Target) {
+    fn handled(&mut self, t: &Target) {
         let w = &mut self.views[t.view].windows[t.window];
         w.covered.push(t.gap);
         cover::merge(&mut w.covered);
@@ -467,6 +555,7 @@ impl Known {
 
     /// Plans a trip: drive through `waypoints` (in order) to the target, then scan.
     pub(super) fn go(&mut self, mut waypoints: Vec<Point>, target: Target) -> Action<Point> {
+        waypoints.extend_from_slice(&target.via);
         waypoints.push(target.at);
         waypoints.reverse();
         self.route = waypoints;
@@ -497,22 +586,56 @@ impl Known {
     pub(super) fn route(&self, a: usize, b: usize) -> (Vec<Point>, f64) {
         let (up, down) = (self.ancestors(a), self.ancestors(b));
         let common = *up.iter().find(|x| down.contains(x)).unwrap_or(&a);
-        let mut pts: Vec<Point> =
-            up.iter().take_while(|&&x| x != common).skip(1).map(|&x| self.views[x].at).collect();
-        if common != a {
-            pts.push(self.views[common].at);
+        let mut pts: Vec<Point> = Vec::new();
+        for &x in up.iter().take_while(|&&x| x != common) {
+            self.retreat(x, &mut pts);
         }
-        let tail: Vec<Point> =
-            down.iter().take_while(|&&x| x != common).map(|&x| self.views[x].at).collect();
-        pts.extend(tail.into_iter().rev());
-        let mut len = 0.0;
-        let mut prev = self.views[a].at;
-        for p in &pts {
-            len += (p[0] - prev[0]).hypot(p[1] - prev[1]);
-            prev = *p;
+        let tail: Vec<usize> = down.iter().take_while(|&&x| x != common).copied().collect();
+        for &x in tail.iter().rev() {
+            pts.extend_from_slice(&self.views[x].via);
+            pts.push(self.views[x].at);
         }
+        let len = path_length(self.views[a].at, &pts);
         (pts, len)
     }
+
+    /// Appends the waypoints of the move back from view `child`'s viewpoint to its parent's
+    /// (the way the robot came, reversed).
+    pub(super) fn retreat(&self, child: usize, route: &mut Vec<Point>) {
+        let v = &self.views[child];
+        route.extend(v.via.iter().rev());
+        if let Some(p) = v.parent {
+            route.push(self.views[p].at);
+        }
+    }
+
+    /// The length of the approach from a target's view's viewpoint to the target.
+    pub(super) fn approach_length(&self, t: &Target) -> f64 {
+        let mut pts = t.via.clone();
+        pts.push(t.at);
+        path_length(self.views[t.view].at, &pts)
+    }
+}
+
+/// The least angle (radians) under which a corner must see a window part to be worth a scan
+/// that looks through it ([`Known::clear_point`]'s last resort): 15°.
+const MIN_LOOK_ANGLE: f64 = std::f64::consts::PI / 12.0;
+
+/// The angle (radians, in [0, π]) the segment `g` subtends from `z`.
+fn subtended(z: Point, g: [Point; 2]) -> f64 {
+    let (a, b) = ([g[0][0] - z[0], g[0][1] - z[1]], [g[1][0] - z[0], g[1][1] - z[1]]);
+    (a[0] * b[1] - a[1] * b[0]).abs().atan2(a[0] * b[0] + a[1] * b[1])
+}
+
+/// The length of the polyline from `from` through `pts`.
+fn path_length(from: Point, pts: &[Point]) -> f64 {
+    let mut len = 0.0;
+    let mut prev = from;
+    for p in pts {
+        len += (p[0] - prev[0]).hypot(p[1] - prev[1]);
+        prev = *p;
+    }
+    len
 }
 
 /// What every polygon strategy does with feedback: scan at the start, drive the planned trip,

@@ -14,6 +14,7 @@
 //! - `cost_aware`: [`CostAware`], stopscan's own: viewpoints on and off windows, weighed by
 //!   the predicted new area behind the windows they see against travel and scan time.
 
+mod approach;
 mod cost_aware;
 mod depth_first;
 mod explore_lite;

@@ -37,8 +37,7 @@ impl NearestFrontier {
         for v in 0..self.known.views.len() {
             if let Some(t) = self.known.next_target(v) {
                 let (_, len) = self.known.route(cur, v);
-                let at = self.known.views[v].at;
-                let total = len + (t.at[0] - at[0]).hypot(t.at[1] - at[1]);
+                let total = len + self.known.approach_length(&t);
                 if best.as_ref().is_none_or(|b| total < b.0) {
                     best = Some((total, t));
                 }

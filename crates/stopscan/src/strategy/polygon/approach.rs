@@ -1,0 +1,236 @@
+//! Approaches with clearance inside one view's region: when no straight move from the view's
+//! viewpoint keeps a robot's clearance on the way to any viewpoint for a window (a door seen
+//! at a slant: the straight line grazes its jamb), a short polyline that bends around the
+//! region's reflex vertices may.
+//!
+//! The region is what the scan saw, so a path that keeps clearance `c` from its whole
+//! boundary (walls, windows and range arcs alike) keeps the robot's footprint in seen free
+//! space. The search is a visibility graph over points stepped off the region's reflex
+//! vertices along their interior bisectors (where shortest paths with clearance bend), a
+//! bounded number of them (those nearest the straight line the robot cannot drive), searched
+//! with Dijkstra's algorithm (`pathfinding`).
+
+use crate::geometry::segments_distance;
+use crate::kernel::{Point, RingSide, ring_side};
+
+/// How many reflex vertices of the region (those nearest the blocked straight line) lend
+/// their stepped-off points to the graph: enough to bend around a door's two jambs and a
+/// corner before it, few enough that the graph stays small on pixel-jagged maps.
+const MAX_CORNERS: usize = 24;
+
+/// How far from its reflex vertex each graph point stands, in multiples of the clearance.
+const STEPS: [f64; 2] = [1.25, 2.5];
+
+/// The region and the clearance a path keeps in it.
+pub(super) struct Approach<'a> {
+    polygon: &'a [Point],
+    c: f64,
+    /// Each edge's bounding box grown by `c`: an edge whose box a segment's box misses is
+    /// farther than `c` from it.
+    boxes: Vec<[f64; 4]>,
+}
+
+/// A path found: the waypoints strictly between the start and the goal, and the goal's index
+/// among the goals given.
+#[derive(Debug, Clone, PartialEq)]
+pub(super) struct Path {
+    pub(super) via: Vec<Point>,
+    pub(super) goal: usize,
+}
+
+impl<'a> Approach<'a> {
+    /// Paths inside `polygon` (a view's region, counter-clockwise) keeping `c > 0` from its
+    /// boundary.
+    pub(super) fn new(polygon: &'a [Point], c: f64) -> Self {
+        let n = polygon.len();
+        let boxes = (0..n)
+            .map(|i| {
+                let (p, q) = (polygon[i], polygon[(i + 1) % n]);
+                [p[0].min(q[0]) - c, p[1].min(q[1]) - c, p[0].max(q[0]) + c, p[1].max(q[1]) + c]
+            })
+            .collect();
+        Self { polygon, c, boxes }
+    }
+
+    /// Whether the straight move `a b` keeps the clearance from every edge (floating point,
+    /// like the clearance itself).
+    pub(super) fn clear(&self, a: Point, b: Point) -> bool {
+        let (x0, y0, x1, y1) = (a[0].min(b[0]), a[1].min(b[1]), a[0].max(b[0]), a[1].max(b[1]));
+        let n = self.polygon.len();
+        (0..n).all(|i| {
+            let bx = &self.boxes[i];
+            bx[0] > x1
+                || bx[2] < x0
+                || bx[1] > y1
+                || bx[3] < y0
+                || segments_distance(a, b, self.polygon[i], self.polygon[(i + 1) % n]) >= self.c
+        })
+    }
+
+    /// Whether `p` lies inside the region with the clearance around it.
+    pub(super) fn clear_point(&self, p: Point) -> bool {
+        ring_side(self.polygon, p) == RingSide::Inside && self.clear(p, p)
+    }
+
+    /// Points stepped off the region's reflex vertices into it (along each vertex's interior
+    /// bisector, by [`STEPS`] times the clearance), from the [`MAX_CORNERS`] vertices nearest
+    /// the segment `near`, that keep the clearance themselves. Deterministic: ties keep the
+    /// region's vertex order.
+    pub(super) fn corners(&self, near: [Point; 2]) -> Vec<Point> {
+        let poly = self.polygon;
+        let n = poly.len();
+        if n < 3 {
+            return Vec::new();
+        }
+        let mut reflex: Vec<(f64, usize)> = (0..n)
+            .filter(|&i| {
+                let (p, q, r) = (poly[(i + n - 1) % n], poly[i], poly[(i + 1) % n]);
+                crate::kernel::orient_sign(p, q, r) < 0
+            })
+            .map(|i| (crate::geometry::segment_distance(poly[i], near[0], near[1]), i))
+            .collect();
+        reflex.sort_by(|a, b| a.0.total_cmp(&b.0).then(a.1.cmp(&b.1)));
+        reflex.truncate(MAX_CORNERS);
+        let mut out = Vec::new();
+        for &(_, i) in &reflex {
+            let (p, q, r) = (poly[(i + n - 1) % n], poly[i], poly[(i + 1) % n]);
+            let unit = |d: [f64; 2]| {
+                let l = d[0].hypot(d[1]);
+                if l > 0.0 { [d[0] / l, d[1] / l] } else { [0.0, 0.0] }
+            };
+            // Interior normals of the two edges (left of a counter-clockwise ring); their sum
+            // halves the (reflex) interior angle.
+            let e1 = unit([q[0] - p[0], q[1] - p[1]]);
+            let e2 = unit([r[0] - q[0], r[1] - q[1]]);
+            let b = unit([-e1[1] - e2[1], e1[0] + e2[0]]);
+            if b == [0.0, 0.0] {
+                continue;
+            }
+            for k in STEPS {
+                let z = [q[0] + k * self.c * b[0], q[1] + k * self.c * b[1]];
+                if self.clear_point(z) {
+                    out.push(z);
+                }
+            }
+        }
+        out
+    }
+
+    /// The shortest path from `from` through `corners` to one of `goals` keeping the
+    /// clearance, for the first goal (in the order given) that has one; `None` if none does.
+    /// Goals are ends only: no path passes through one.
+    pub(super) fn path(&self, from: Point, corners: &[Point], goals: &[Point]) -> Option<Path> {
+        let nodes: Vec<Point> = std::iter::once(from)
+            .chain(corners.iter().copied())
+            .chain(goals.iter().copied())
+            .collect();
+        let first_goal = 1 + corners.len();
+        let open: Vec<bool> = goals.iter().map(|&g| self.clear_point(g)).collect();
+        // Lengths in nanometres of the coordinates' unit: integer costs for Dijkstra.
+        let cost = |a: Point, b: Point| ((a[0] - b[0]).hypot(a[1] - b[1]) * 1e9).round() as u64;
+        let reached = pathfinding::directed::dijkstra::dijkstra_all(&0usize, |&u| {
+            let a = nodes[u];
+            let mut next = Vec::new();
+            if u < first_goal {
+                for (v, &b) in nodes.iter().enumerate().skip(1) {
+                    if v != u && (v < first_goal || open[v - first_goal]) && self.clear(a, b) {
+                        next.push((v, cost(a, b)));
+                    }
+                }
+            }
+            next
+        });
+        let g = (0..goals.len()).find(|&g| reached.contains_key(&(first_goal + g)))?;
+        let mut via = Vec::new();
+        let mut at = reached[&(first_goal + g)].0;
+        while at != 0 {
+            via.push(nodes[at]);
+            at = reached[&at].0;
+        }
+        via.reverse();
+        Some(Path { via, goal: g })
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// Two rooms joined by a door 1 m wide in a wall 0.2 m thick, as one counter-clockwise
+    /// ring: the lower room 0 ≤ x ≤ 4, 0 ≤ y ≤ 4; the door 1.5 ≤ x ≤ 2.5 at 4 ≤ y ≤ 4.2;
+    /// the upper room above.
+    fn two_rooms() -> Vec<Point> {
+        vec![
+            [0.0, 0.0],
+            [4.0, 0.0],
+            [4.0, 4.0],
+            [2.5, 4.0],
+            [2.5, 4.2],
+            [4.0, 4.2],
+            [4.0, 8.2],
+            [0.0, 8.2],
+            [0.0, 4.2],
+            [1.5, 4.2],
+            [1.5, 4.0],
+            [0.0, 4.0],
+        ]
+    }
+
+    #[test]
+    fn a_slanted_door_is_passed_by_bending_at_its_jambs() {
+        let poly = two_rooms();
+        let a = Approach::new(&poly, 0.3);
+        // From the lower room's right to the upper room's right: the straight line runs into
+        // the wall beside the door.
+        let (from, goal) = ([3.5, 0.5], [3.5, 7.5]);
+        assert!(a.clear_point(from) && a.clear_point(goal));
+        assert!(!a.clear(from, goal));
+        let corners = a.corners([from, goal]);
+        let p = a.path(from, &corners, &[goal]).expect("a path through the door");
+        assert_eq!(p.goal, 0);
+        assert!(!p.via.is_empty());
+        // Every leg keeps the clearance, checked from the definition: the distance from
+        // sampled points of each leg to every edge.
+        let pts: Vec<Point> =
+            std::iter::once(from).chain(p.via.iter().copied()).chain([goal]).collect();
+        for w in pts.windows(2) {
+            for s in 0..=100 {
+                let t = f64::from(s) / 100.0;
+                let x = [w[0][0] + t * (w[1][0] - w[0][0]), w[0][1] + t * (w[1][1] - w[0][1])];
+                for i in 0..poly.len() {
+                    let d =
+                        crate::geometry::segment_distance(x, poly[i], poly[(i + 1) % poly.len()]);
+                    assert!(d >= 0.3 - 1e-9, "leg {w:?} at {x:?} is {d} from edge {i}");
+                }
+            }
+        }
+        // No longer than a detour through the door's middle with a metre to spare.
+        let length: f64 =
+            pts.windows(2).map(|w| (w[1][0] - w[0][0]).hypot(w[1][1] - w[0][1])).sum();
+        let mid = [2.0, 4.1];
+        let detour =
+            (mid[0] - from[0]).hypot(mid[1] - from[1]) + (goal[0] - mid[0]).hypot(goal[1] - mid[1]);
+        assert!(length <= detour + 1.0, "{length}");
+    }
+
+    #[test]
+    fn a_door_narrower_than_the_robot_has_no_path() {
+        let poly = two_rooms();
+        // A clearance of 0.55 m: the 1 m door is too narrow.
+        let a = Approach::new(&poly, 0.55);
+        let (from, goal) = ([1.0, 1.0], [3.0, 7.0]);
+        let corners = a.corners([from, goal]);
+        assert_eq!(a.path(from, &corners, &[goal]), None);
+    }
+
+    #[test]
+    fn the_first_goal_with_a_path_is_taken() {
+        let poly = two_rooms();
+        let a = Approach::new(&poly, 0.3);
+        let from = [0.5, 0.5];
+        // The first goal is outside the region, the second is within reach.
+        let goals = [[5.0, 5.0], [3.5, 7.5]];
+        let corners = a.corners([from, goals[1]]);
+        assert_eq!(a.path(from, &corners, &goals).map(|p| p.goal), Some(1));
+    }
+}
