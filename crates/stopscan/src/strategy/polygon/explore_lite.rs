@@ -69,7 +69,8 @@
 //!   either). explore_lite's centroid leaves out the cluster's first cell while dividing by a
 //!   size that counts it; here every cell counts in the centroid and the distance.
 //! - **Map size.** The raster grows to at most [`MAX_SIDE_CELLS`] cells a side around the
-//!   start (410 m at 0.05 m), as a costmap has a fixed size; nothing is mapped beyond.
+//!   start (410 m at 0.05 m), as a costmap has a fixed size; nothing is mapped beyond, and
+//!   its edge is no frontier.
 
 use std::collections::{BTreeSet, VecDeque};
 
@@ -100,6 +101,10 @@ const GROWTH_PAD: i64 = 64;
 /// How far (cells, Chebyshev) from its own cell the robot looks for a safe cell to drive to
 /// straight when its own cell is not safe.
 const MAX_ENTRY_CELLS: i64 = 64;
+
+/// Cells this close to the box's edge are never free: the neighbours of free cells, of
+/// frontier cells and of theirs all lie in the box, so the searches index them unchecked.
+const MARGIN: usize = 3;
 
 /// A* cost of an orthogonal step (a diagonal one costs [`DIAGONAL`]).
 const STEP: u64 = 1000;
@@ -270,6 +275,9 @@ impl ExploreLite {
     /// After a scan at `at`: the cheapest reachable frontier's trip, or done.
     fn plan(&mut self, at: Point) -> Action<Point> {
         let frontiers = self.raster.frontiers(at, &self.params);
+        if frontiers.is_empty() {
+            return Action::Done;
+        }
         let entries = self.entries(at);
         let reach = self.raster.reachable(&entries);
         let here = self.raster.cell_of(at);
@@ -585,6 +593,7 @@ impl Raster {
                     }
                     if let Some(j) = self.local([x, row])
                         && self.cells[j] & STATE == UNKNOWN
+                        && self.inner(j)
                     {
                         self.cells[j] = (self.cells[j] & !STATE) | FREE;
                     }
@@ -644,6 +653,19 @@ impl Raster {
         self.update_safe(self.origin, end, k);
     }
 
+    /// Whether a local index is at least [`MARGIN`] cells from the box's edge.
+    fn inner(&self, i: usize) -> bool {
+        let [w, h] = self.size;
+        let (x, y) = (i % w, i / w);
+        x >= MARGIN && y >= MARGIN && x + MARGIN < w && y + MARGIN < h
+    }
+
+    /// The local index offsets of [`NEIGHBOURS`], for cells away from the box's edge.
+    fn offsets(&self) -> [isize; 8] {
+        let w = self.size[0] as isize;
+        NEIGHBOURS.map(|[dx, dy]| dx as isize + dy as isize * w)
+    }
+
     /// The 4- and 8-neighbourhoods of a local index (within the box).
     fn neighbours(&self, i: usize, eight: bool) -> impl Iterator<Item = usize> + use<> {
         let [w, h] = self.size;
@@ -688,16 +710,22 @@ impl Raster {
         let reference = self.centre(self.global(pos));
         let mut visited = vec![false; n];
         let mut flagged = vec![false; n];
+        // Free cells keep MARGIN from the box's edge: the cells met below are never on it.
+        let off = self.offsets();
+        let step = |i: usize, o: isize| i.wrapping_add_signed(o);
+        // Unknown cells in the margin (reached only when the raster is at its largest) are
+        // beyond the map, not frontiers.
         let is_new_frontier = |i: usize, flagged: &[bool]| {
             self.cells[i] & STATE == UNKNOWN
                 && !flagged[i]
-                && self.neighbours(i, false).any(|j| self.cells[j] & STATE == FREE)
+                && off[..4].iter().any(|&o| self.cells[step(i, o)] & STATE == FREE)
+                && self.inner(i)
         };
         let mut out = Vec::new();
         let mut q = VecDeque::from([start]);
         visited[start] = true;
         while let Some(i) = q.pop_front() {
-            for j in self.neighbours(i, false) {
+            for j in off[..4].iter().map(|&o| step(i, o)) {
                 if free(j) && !visited[j] {
                     visited[j] = true;
                     q.push_back(j);
@@ -712,7 +740,7 @@ impl Raster {
                         sum = [sum[0] + p[0], sum[1] + p[1]];
                         min_distance =
                             min_distance.min((p[0] - reference[0]).hypot(p[1] - reference[1]));
-                        for d in self.neighbours(c, true) {
+                        for d in off.iter().map(|&o| step(c, o)) {
                             if is_new_frontier(d, &flagged) {
                                 flagged[d] = true;
                                 cq.push_back(d);
@@ -733,26 +761,20 @@ impl Raster {
     }
 
     /// The safe 8-neighbours of a local index a move may step to (a diagonal only when both
-    /// orthogonal cells are safe), with the step's cost.
+    /// orthogonal cells are safe), with the step's cost. Safe cells are free, so they keep
+    /// [`MARGIN`] from the box's edge and their neighbours are indexed unchecked.
     fn safe_steps(&self, i: usize) -> impl Iterator<Item = (usize, u64)> + '_ {
-        let w = self.size[0];
-        let safe = move |j: usize| self.cells[j] & SAFE != 0;
-        let (x, y) = ((i % w) as i64, (i / w) as i64);
-        let h = self.size[1];
-        let at = move |dx: i64, dy: i64| {
-            let (nx, ny) = (x + dx, y + dy);
-            (nx >= 0 && ny >= 0 && (nx as usize) < w && (ny as usize) < h)
-                .then(|| ny as usize * w + nx as usize)
-                .filter(|&j| safe(j))
-        };
-        NEIGHBOURS.into_iter().filter_map(move |[dx, dy]| {
-            let j = at(dx, dy)?;
+        let w = self.size[0] as isize;
+        let safe = move |o: isize| self.cells[i.wrapping_add_signed(o)] & SAFE != 0;
+        NEIGHBOURS.into_iter().zip(self.offsets()).filter_map(move |([dx, dy], o)| {
+            if !safe(o) {
+                return None;
+            }
             if dx != 0 && dy != 0 {
-                at(dx, 0)?;
-                at(0, dy)?;
-                Some((j, DIAGONAL))
+                (safe(dx as isize) && safe(dy as isize * w))
+                    .then_some((i.wrapping_add_signed(o), DIAGONAL))
             } else {
-                Some((j, STEP))
+                Some((i.wrapping_add_signed(o), STEP))
             }
         })
     }
@@ -1074,6 +1096,27 @@ mod tests {
             assert_eq!(free.len(), 13 * 8, "columns 1..=13, rows 1..=8");
             assert!(r.frontiers([0.52, 0.47], &ExploreLiteParams::default()).is_empty());
         }
+    }
+
+    #[test]
+    fn the_raster_stops_at_its_largest_side_and_keeps_free_cells_off_its_edge() {
+        // A corridor 20 000 cells long at 1 m: the raster holds MAX_SIDE_CELLS of it around
+        // the viewpoint, and no free cell comes within MARGIN of its edge.
+        let v = rectangle([-10_000.5, 0.5], [10_000.5, 9.5], [false, false, false, false]);
+        let r = raster_of(1.0, &[&v]);
+        assert_eq!(r.size[0] as i64, MAX_SIDE_CELLS);
+        assert!(r.size[1] < 200);
+        for i in 0..r.cells.len() {
+            if r.cells[i] & STATE == FREE {
+                assert!(r.inner(i), "{:?}", r.global(i));
+            }
+        }
+        let free = r.cells.iter().filter(|&&c| c & STATE == FREE).count();
+        assert_eq!(free, (MAX_SIDE_CELLS as usize - 2 * MARGIN) * 8);
+        // The searches run to the edge without leaving the box, and the map's edge is no
+        // frontier.
+        let f = r.frontiers([0.0, 5.0], &ExploreLiteParams::default());
+        assert!(f.is_empty(), "{f:?}");
     }
 
     #[test]
