@@ -1,76 +1,6 @@
-//! An explore_lite-style frontier explorer: the baseline ROS users run today (the
-//! `explore_lite` package of m-explore, with move_base driving the robot), on an occupancy
-//! raster of what has been seen.
-//!
-//! # What it does
-//! Every scan is rasterised once, when it arrives, into an occupancy grid that grows with the
-//! views (a bounding box, re-allocated when a view falls outside it). A cell is
-//! - **free** when its closed square lies inside the closed region of some view: its centre is
-//!   inside (scanline fill) and no edge of that region touches it (a supercover of the
-//!   region's edges, grown by a hair so that rounding stays on the safe side);
-//! - **occupied** when a wall piece ([`BoundaryPiece::Edge`] or [`BoundaryPiece::Partial`]) of
-//!   any view touches it (walls are true obstacles; occupied wins over free);
-//! - **unknown** otherwise, including the cells a window or a range chord runs through, unless
-//!   another view contains them whole (then they are free: no frontier at the seam of two
-//!   views).
-//!
-//! After each scan it searches frontiers as explore_lite's `FrontierSearch::searchFrom`
-//! does: a breadth-first search over free cells (4-connected) from the robot's cell (or the
-//! nearest free cell); an unknown cell with a free 4-neighbour is a frontier cell, and each
-//! one met starts a cluster grown over frontier cells by 8-connectivity. A cluster has a size
-//! (cells), a centroid, and a distance (from the centre of the robot's cell to its nearest
-//! cell); clusters shorter than `min_frontier_size` (size × resolution) are dropped, and the
-//! others are ranked by the cost `potential_scale · distance − gain_scale · size ·
-//! resolution`. It takes the cheapest one that is not blacklisted (explore_lite's rule: a
-//! goal within 5 cells of a blacklisted point, in both coordinates, is blacklisted too),
-//! drives to it and scans on arrival. The run is priced by the run's cost model like every
-//! strategy's; the choice is explore_lite's and does not look at it. It is done when no
-//! frontier of at least `min_frontier_size` that it can reach is left.
-//!
-//! # Safe motion
-//! Moves are planned on **safe** cells only: a cell is safe when every cell within
-//! `⌈clearance / resolution⌉ + 1` cells of it (Chebyshev) is free, where the clearance is the
-//! footprint's [`planning_clearance`](Footprint::planning_clearance) (for a point robot safe
-//! is free). A* plans over safe cells, 8-connected (a diagonal step only when both
-//! orthogonal neighbours are safe); the cell path is then cut into straight moves, each
-//! extended greedily while every cell its supercover touches is safe. So every move lies in
-//! the union of safe cells' squares, and the robot's disc (of the planning clearance) around
-//! any point of it lies in free cells: the world accepts the move. The first move, from the
-//! viewpoint (not a cell centre), either stays in safe cells the same way or, when the robot
-//! stands too close to a wall for its cell to be safe (a start), goes straight to a nearby
-//! safe cell through the region just scanned, keeping the clearance from its boundary.
-//!
-//! # Defaults
-//! Those of explore_lite's node (`explore.cpp` and its wiki page): `potential_scale` 1e-3,
-//! `gain_scale` 1.0, `min_frontier_size` 0.5 m, and its blacklist tolerance of 5 cells. The
-//! launch file `explore.launch` sets `potential_scale` 3.0 and `min_frontier_size` 0.75;
-//! [`ExploreLite::with_params`] takes those or any others. explore_lite has no resolution of
-//! its own (it reads move_base's costmap): 0.05 m is a typical costmap's.
-//!
-//! # Departures from explore_lite
-//! - **Discrete stop and scan.** explore_lite replans at `planner_frequency` (1 Hz) while the
-//!   robot drives and the map fills in, and may switch goals mid-trip; here the map changes
-//!   only at scans, so it plans once per stop and drives the whole trip, then scans.
-//! - **The goal is moved to a safe cell.** explore_lite sends the centroid itself to
-//!   move_base; it often lies in unknown space or in an obstacle, where move_base would fail
-//!   (or, with planning through unknown space, drive into the unknown). Here the goal is the
-//!   reachable safe cell nearest to the centroid (its centre is where the robot scans).
-//! - **Unknown space is never traversed.** explore_lite's planner may plan through unknown
-//!   space; here every move lies in cells seen free, so no move can be refused.
-//! - **No progress timeout.** `progress_timeout` (30 s) blacklists a goal the robot does not
-//!   get closer to; no time passes without progress in the simulator. Its static-world
-//!   counterpart: a frontier whose goal cell is where a scan already stood (the robot's own
-//!   cell included) is blacklisted, since a scan there would see nothing new. A frontier with
-//!   no reachable safe cell, or no A* path, is blacklisted as move_base's failure would.
-//! - **`orientation_scale`** does nothing in explore_lite either; it is not modelled.
-//! - **Cost and centroid.** explore_lite multiplies the distance (already in metres) by the
-//!   resolution once more; here both terms are in metres, `potential_scale · distance −
-//!   gain_scale · size · resolution` (with the default 1e-3 the distance barely counts in
-//!   either). explore_lite's centroid leaves out the cluster's first cell while dividing by a
-//!   size that counts it; here every cell counts in the centroid and the distance.
-//! - **Map size.** The raster grows to at most [`MAX_SIDE_CELLS`] cells a side around the
-//!   start (410 m at 0.05 m), as a costmap has a fixed size; nothing is mapped beyond, and
-//!   its edge is no frontier.
+//! An explore_lite-style frontier explorer, [`ExploreLite`]: the baseline ROS users run today.
+//! How it works, its defaults, what it inherits from explore_lite and where it departs from it
+//! are documented on the type, where the public documentation shows them.
 
 use std::collections::{BTreeSet, VecDeque};
 
@@ -156,8 +86,91 @@ pub enum InvalidExploreLiteParams {
     },
 }
 
-/// An explore_lite-style frontier explorer (see the [module](self)). Its whole state is
-/// serialisable.
+/// An explore_lite-style frontier explorer: the baseline ROS users run today (the
+/// `explore_lite` package of m-explore, with move_base driving the robot), on an occupancy
+/// raster of what has been seen.
+///
+/// # What it does
+/// Every scan is rasterised once, when it arrives, into an occupancy grid that grows with the
+/// views (a bounding box, re-allocated when a view falls outside it). A cell is
+/// - **free** when its closed square lies inside the closed region of some view: its centre is
+///   inside (scanline fill) and no edge of that region touches it (a supercover of the
+///   region's edges, grown by a hair so that rounding stays on the safe side);
+/// - **occupied** when a wall piece ([`BoundaryPiece::Edge`] or [`BoundaryPiece::Partial`]) of
+///   any view touches it (walls are true obstacles; occupied wins over free);
+/// - **unknown** otherwise, including the cells a window or a range chord runs through, unless
+///   another view contains them whole (then they are free: no frontier at the seam of two
+///   views).
+///
+/// After each scan it searches frontiers as explore_lite's `FrontierSearch::searchFrom`
+/// does: a breadth-first search over free cells (4-connected) from the robot's cell (or the
+/// nearest free cell); an unknown cell with a free 4-neighbour is a frontier cell, and each
+/// one met starts a cluster grown over frontier cells by 8-connectivity. A cluster has a size
+/// (cells), a centroid, and a distance (from the centre of the robot's cell to its nearest
+/// cell); clusters shorter than `min_frontier_size` (size × resolution) are dropped, and the
+/// others are ranked by the cost `potential_scale · distance − gain_scale · size ·
+/// resolution`. It takes the cheapest one that is not blacklisted (explore_lite's rule: a
+/// goal within 5 cells of a blacklisted point, in both coordinates, is blacklisted too),
+/// drives to it and scans on arrival. The run is priced by the run's cost model like every
+/// strategy's; the choice is explore_lite's and does not look at it. It is done when no
+/// frontier of at least `min_frontier_size` that it can reach is left.
+///
+/// # Safe motion
+/// Moves are planned on **safe** cells only: a cell is safe when every cell within
+/// `⌈clearance / resolution⌉ + 1` cells of it (Chebyshev) is free, where the clearance is the
+/// footprint's [`planning_clearance`](Footprint::planning_clearance) (for a point robot safe
+/// is free). A* plans over safe cells, 8-connected (a diagonal step only when both
+/// orthogonal neighbours are safe); the cell path is then cut into straight moves, each
+/// extended greedily while every cell its supercover touches is safe. So every move lies in
+/// the union of safe cells' squares, and the robot's disc (of the planning clearance) around
+/// any point of it lies in free cells: the world accepts the move. The first move, from the
+/// viewpoint (not a cell centre), either stays in safe cells the same way or, when the robot
+/// stands too close to a wall for its cell to be safe (a start), goes straight to a nearby
+/// safe cell through the region just scanned, keeping the clearance from its boundary.
+///
+/// # Defaults
+/// Those of explore_lite's node (`explore.cpp` and its wiki page): `potential_scale` 1e-3,
+/// `gain_scale` 1.0, `min_frontier_size` 0.5 m, and its blacklist tolerance of 5 cells. The
+/// launch file `explore.launch` sets `potential_scale` 3.0 and `min_frontier_size` 0.75;
+/// [`ExploreLite::with_params`] takes those or any others. explore_lite has no resolution of
+/// its own (it reads move_base's costmap): 0.05 m is a typical costmap's.
+///
+/// # What it inherits
+/// - **Open space with a short range.** The frontier around a scan in open space is one ring
+///   of chords, one cluster, whose centroid is where the robot stands: its goal is the robot's
+///   own cell, so it is blacklisted and the exploration may end early. explore_lite sends the
+///   same goal and times out there (users report the robot stuck in large open areas with the
+///   goal on its own spot: hrnr/m-explore issue 52).
+/// - **Metric sizes.** `min_frontier_size` and the resolution are metres: on polygons whose
+///   units are not (the art-gallery benchmarks), openings shorter than 0.5 units are ignored
+///   and passages narrower than two cells closed.
+///
+/// # Departures from explore_lite
+/// - **Discrete stop and scan.** explore_lite replans at `planner_frequency` (1 Hz) while the
+///   robot drives and the map fills in, and may switch goals mid-trip; here the map changes
+///   only at scans, so it plans once per stop and drives the whole trip, then scans.
+/// - **The goal is moved to a safe cell.** explore_lite sends the centroid itself to
+///   move_base; it often lies in unknown space or in an obstacle, where move_base would fail
+///   (or, with planning through unknown space, drive into the unknown). Here the goal is the
+///   reachable safe cell nearest to the centroid (its centre is where the robot scans).
+/// - **Unknown space is never traversed.** explore_lite's planner may plan through unknown
+///   space; here every move lies in cells seen free, so no move can be refused.
+/// - **No progress timeout.** `progress_timeout` (30 s) blacklists a goal the robot does not
+///   get closer to; no time passes without progress in the simulator. Its static-world
+///   counterpart: a frontier whose goal cell is where a scan already stood (the robot's own
+///   cell included) is blacklisted, since a scan there would see nothing new. A frontier with
+///   no reachable safe cell, or no A* path, is blacklisted as move_base's failure would.
+/// - **`orientation_scale`** does nothing in explore_lite either; it is not modelled.
+/// - **Cost and centroid.** explore_lite multiplies the distance (already in metres) by the
+///   resolution once more; here both terms are in metres, `potential_scale · distance −
+///   gain_scale · size · resolution` (with the default 1e-3 the distance barely counts in
+///   either). explore_lite's centroid leaves out the cluster's first cell while dividing by a
+///   size that counts it; here every cell counts in the centroid and the distance.
+/// - **Map size.** The raster grows to at most [`MAX_SIDE_CELLS`] cells a side around the
+///   start (410 m at 0.05 m), as a costmap has a fixed size; nothing is mapped beyond, and
+///   its edge is no frontier.
+///
+/// Its whole state is serialisable.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 pub struct ExploreLite {
     params: ExploreLiteParams,
