@@ -29,8 +29,9 @@
 //!   [`algorithm::visibility::range`].
 //! - The paper's exploration algorithm (at most r + 1 scans):
 //!   [`strategy::polygon::DepthFirst`]; with a range restriction (Lemma 4):
-//!   [`strategy::polygon::RangeLimited`]; two baselines: [`strategy::polygon::NearestFrontier`],
-//!   [`strategy::polygon::GreedyNbv`]; all in [`strategy::polygon`].
+//!   [`strategy::polygon::RangeLimited`]; three baselines: [`strategy::polygon::NearestFrontier`],
+//!   [`strategy::polygon::GreedyNbv`] and explore_lite's frontier explorer on an occupancy
+//!   raster, [`strategy::polygon::ExploreLite`]; all in [`strategy::polygon`].
 //! - Offline references (the paper's offline problem): lower bounds for any exploration
 //!   ([`offline::polygon::bounds`]), Lemma 4's upper bound ([`offline::polygon::upper_bound`]),
 //!   the greedy connected views ([`offline::polygon::greedy`]) and the exact optimum by integer

@@ -80,6 +80,33 @@ fn a_disc_robot_keeps_its_clearance_and_explores() {
 }
 
 #[test]
+fn other_footprints_and_a_range_never_end_a_run_with_an_error() {
+    use stopscan::generate::{office, pillar_forest, star};
+    let rectangle =
+        Footprint::convex(vec![[0.3, 0.2], [-0.3, 0.2], [-0.3, -0.2], [0.3, -0.2]]).unwrap();
+    let footprints = [rectangle, Footprint::disc(0.35).unwrap()];
+    let instances =
+        [pillar_forest(30.0, 20.0, 6, 1).unwrap(), office(3, 4, 5).unwrap(), star(5).unwrap()];
+    for inst in &instances {
+        for fp in &footprints {
+            for range in [None, Some(3.0)] {
+                let world =
+                    PolygonWorld::with_robot(inst.domain.clone(), range, fp, Some(inst.start))
+                        .or_else(|_| PolygonWorld::with_robot(inst.domain.clone(), range, fp, None))
+                        .unwrap();
+                let start =
+                    world.reach().map_or(inst.start, stopscan::world::polygon::Reach::start);
+                let setup = RobotSetup { footprint: fp.clone(), ..RobotSetup::default() };
+                let mut s = ExploreLite::for_robot(&setup);
+                let r = run(&world, start, &CostModel::default(), &mut s, &mut NoObserver);
+                let r = r.unwrap_or_else(|e| panic!("{fp:?}, range {range:?}: {e}"));
+                assert!(r.tally.scans >= 1);
+            }
+        }
+    }
+}
+
+#[test]
 fn the_same_instance_gives_the_same_run() {
     for footprint in [Footprint::Point, Footprint::disc(0.2).unwrap()] {
         let inst = office();

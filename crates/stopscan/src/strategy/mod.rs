@@ -1,7 +1,7 @@
 //! Online strategies, one family per folder. They see observations only, never the world.
 //!
 //! - [`corner`]: stop lists: UNIREC, EXPREC, the circle strategy, the MDP policies;
-//! - [`polygon`]: the discrete-visibility paper's algorithms and two baselines;
+//! - [`polygon`]: the discrete-visibility paper's algorithms and three baselines;
 //! - [`grid`]: Algorithm 1 of the ROI paper, with its search and battery wrappers.
 //!
 //! Each family has one [`Registry`]: the strategies selectable by name, each with the summary

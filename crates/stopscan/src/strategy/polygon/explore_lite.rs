@@ -1,75 +1,6 @@
-//! An explore_lite-style frontier explorer: the baseline ROS users run today (the
-//! `explore_lite` package of m-explore, with move_base driving the robot), on an occupancy
-//! raster of what has been seen.
-//!
-//! # What it does
-//! Every scan is rasterised once, when it arrives, into an occupancy grid that grows with the
-//! views (a bounding box, re-allocated when a view falls outside it). A cell is
-//! - **free** when its closed square lies inside the closed region of some view: its centre is
-//!   inside (scanline fill) and no edge of that region touches it (a supercover of the
-//!   region's edges, grown by a hair so that rounding stays on the safe side);
-//! - **occupied** when a wall piece ([`BoundaryPiece::Edge`] or [`BoundaryPiece::Partial`]) of
-//!   any view touches it (walls are true obstacles; occupied wins over free);
-//! - **unknown** otherwise, including the cells a window or a range chord runs through, unless
-//!   another view contains them whole (then they are free: no frontier at the seam of two
-//!   views).
-//!
-//! After each scan it searches frontiers as explore_lite's `FrontierSearch::searchFrom`
-//! does: a breadth-first search over free cells (4-connected) from the robot's cell (or the
-//! nearest free cell); an unknown cell with a free 4-neighbour is a frontier cell, and each
-//! one met starts a cluster grown over frontier cells by 8-connectivity. A cluster has a size
-//! (cells), a centroid, and a distance (from the centre of the robot's cell to its nearest
-//! cell); clusters shorter than `min_frontier_size` (size × resolution) are dropped, and the
-//! others are ranked by the cost `potential_scale · distance − gain_scale · size ·
-//! resolution`. It takes the cheapest one that is not blacklisted (explore_lite's rule: a
-//! goal within 5 cells of a blacklisted point, in both coordinates, is blacklisted too),
-//! drives to it and scans on arrival. The run is priced by the run's cost model like every
-//! strategy's; the choice is explore_lite's and does not look at it. It is done when no
-//! frontier of at least `min_frontier_size` that it can reach is left.
-//!
-//! # Safe motion
-//! Moves are planned on **safe** cells only: a cell is safe when every cell within
-//! `⌈clearance / resolution⌉ + 1` cells of it (Chebyshev) is free, where the clearance is the
-//! footprint's [`planning_clearance`](Footprint::planning_clearance) (for a point robot safe
-//! is free). A* plans over safe cells, 8-connected (a diagonal step only when both
-//! orthogonal neighbours are safe); the cell path is then cut into straight moves, each
-//! extended greedily while every cell its supercover touches is safe. So every move lies in
-//! the union of safe cells' squares, and the robot's disc (of the planning clearance) around
-//! any point of it lies in free cells: the world accepts the move. The first move, from the
-//! viewpoint (not a cell centre), either stays in safe cells the same way or, when the robot
-//! stands too close to a wall for its cell to be safe (a start), goes straight to a nearby
-//! safe cell through the region just scanned, keeping the clearance from its boundary.
-//!
-//! # Defaults
-//! Those of explore_lite's node (`explore.cpp` and its wiki page): `potential_scale` 1e-3,
-//! `gain_scale` 1.0, `min_frontier_size` 0.5 m, and its blacklist tolerance of 5 cells. The
-//! launch file `explore.launch` sets `potential_scale` 3.0 and `min_frontier_size` 0.75;
-//! [`ExploreLite::with_params`] takes those or any others. explore_lite has no resolution of
-//! its own (it reads move_base's costmap): 0.05 m is a typical costmap's.
-//!
-//! # Departures from explore_lite
-//! - **Discrete stop and scan.** explore_lite replans at `planner_frequency` (1 Hz) while the
-//!   robot drives and the map fills in, and may switch goals mid-trip; here the map changes
-//!   only at scans, so it plans once per stop and drives the whole trip, then scans.
-//! - **The goal is moved to a safe cell.** explore_lite sends the centroid itself to
-//!   move_base; it often lies in unknown space or in an obstacle, where move_base would fail
-//!   (or, with planning through unknown space, drive into the unknown). Here the goal is the
-//!   reachable safe cell nearest to the centroid (its centre is where the robot scans).
-//! - **Unknown space is never traversed.** explore_lite's planner may plan through unknown
-//!   space; here every move lies in cells seen free, so no move can be refused.
-//! - **No progress timeout.** `progress_timeout` (30 s) blacklists a goal the robot does not
-//!   get closer to; no time passes without progress in the simulator. Its static-world
-//!   counterpart: a frontier whose goal cell is where a scan already stood (the robot's own
-//!   cell included) is blacklisted, since a scan there would see nothing new. A frontier with
-//!   no reachable safe cell, or no A* path, is blacklisted as move_base's failure would.
-//! - **`orientation_scale`** does nothing in explore_lite either; it is not modelled.
-//! - **Cost and centroid.** explore_lite multiplies the distance (already in metres) by the
-//!   resolution once more; here both terms are in metres, `potential_scale · distance −
-//!   gain_scale · size · resolution` (with the default 1e-3 the distance barely counts in
-//!   either). explore_lite's centroid leaves out the cluster's first cell while dividing by a
-//!   size that counts it; here every cell counts in the centroid and the distance.
-//! - **Map size.** The raster grows to at most [`MAX_SIDE_CELLS`] cells a side around the
-//!   start (410 m at 0.05 m), as a costmap has a fixed size; nothing is mapped beyond.
+//! An explore_lite-style frontier explorer, [`ExploreLite`]: the baseline ROS users run today.
+//! How it works, its defaults, what it inherits from explore_lite and where it departs from it
+//! are documented on the type, where the public documentation shows them.
 
 use std::collections::{BTreeSet, VecDeque};
 
@@ -100,6 +31,10 @@ const GROWTH_PAD: i64 = 64;
 /// How far (cells, Chebyshev) from its own cell the robot looks for a safe cell to drive to
 /// straight when its own cell is not safe.
 const MAX_ENTRY_CELLS: i64 = 64;
+
+/// Cells this close to the box's edge are never free: the neighbours of free cells, of
+/// frontier cells and of theirs all lie in the box, so the searches index them unchecked.
+const MARGIN: usize = 3;
 
 /// A* cost of an orthogonal step (a diagonal one costs [`DIAGONAL`]).
 const STEP: u64 = 1000;
@@ -151,8 +86,91 @@ pub enum InvalidExploreLiteParams {
     },
 }
 
-/// An explore_lite-style frontier explorer (its module documents the model and the
-/// departures from explore_lite). Its whole state is serialisable.
+/// An explore_lite-style frontier explorer: the baseline ROS users run today (the
+/// `explore_lite` package of m-explore, with move_base driving the robot), on an occupancy
+/// raster of what has been seen.
+///
+/// # What it does
+/// Every scan is rasterised once, when it arrives, into an occupancy grid that grows with the
+/// views (a bounding box, re-allocated when a view falls outside it). A cell is
+/// - **free** when its closed square lies inside the closed region of some view: its centre is
+///   inside (scanline fill) and no edge of that region touches it (a supercover of the
+///   region's edges, grown by a hair so that rounding stays on the safe side);
+/// - **occupied** when a wall piece ([`BoundaryPiece::Edge`] or [`BoundaryPiece::Partial`]) of
+///   any view touches it (walls are true obstacles; occupied wins over free);
+/// - **unknown** otherwise, including the cells a window or a range chord runs through, unless
+///   another view contains them whole (then they are free: no frontier at the seam of two
+///   views).
+///
+/// After each scan it searches frontiers as explore_lite's `FrontierSearch::searchFrom`
+/// does: a breadth-first search over free cells (4-connected) from the robot's cell (or the
+/// nearest free cell); an unknown cell with a free 4-neighbour is a frontier cell, and each
+/// one met starts a cluster grown over frontier cells by 8-connectivity. A cluster has a size
+/// (cells), a centroid, and a distance (from the centre of the robot's cell to its nearest
+/// cell); clusters shorter than `min_frontier_size` (size × resolution) are dropped, and the
+/// others are ranked by the cost `potential_scale · distance − gain_scale · size ·
+/// resolution`. It takes the cheapest one that is not blacklisted (explore_lite's rule: a
+/// goal within 5 cells of a blacklisted point, in both coordinates, is blacklisted too),
+/// drives to it and scans on arrival. The run is priced by the run's cost model like every
+/// strategy's; the choice is explore_lite's and does not look at it. It is done when no
+/// frontier of at least `min_frontier_size` that it can reach is left.
+///
+/// # Safe motion
+/// Moves are planned on **safe** cells only: a cell is safe when every cell within
+/// `⌈clearance / resolution⌉ + 1` cells of it (Chebyshev) is free, where the clearance is the
+/// footprint's [`planning_clearance`](Footprint::planning_clearance) (for a point robot safe
+/// is free). A* plans over safe cells, 8-connected (a diagonal step only when both
+/// orthogonal neighbours are safe); the cell path is then cut into straight moves, each
+/// extended greedily while every cell its supercover touches is safe. So every move lies in
+/// the union of safe cells' squares, and the robot's disc (of the planning clearance) around
+/// any point of it lies in free cells: the world accepts the move. The first move, from the
+/// viewpoint (not a cell centre), either stays in safe cells the same way or, when the robot
+/// stands too close to a wall for its cell to be safe (a start), goes straight to a nearby
+/// safe cell through the region just scanned, keeping the clearance from its boundary.
+///
+/// # Defaults
+/// Those of explore_lite's node (`explore.cpp` and its wiki page): `potential_scale` 1e-3,
+/// `gain_scale` 1.0, `min_frontier_size` 0.5 m, and its blacklist tolerance of 5 cells. The
+/// launch file `explore.launch` sets `potential_scale` 3.0 and `min_frontier_size` 0.75;
+/// [`ExploreLite::with_params`] takes those or any others. explore_lite has no resolution of
+/// its own (it reads move_base's costmap): 0.05 m is a typical costmap's.
+///
+/// # What it inherits
+/// - **Open space with a short range.** The frontier around a scan in open space is one ring
+///   of chords, one cluster, whose centroid is where the robot stands: its goal is the robot's
+///   own cell, so it is blacklisted and the exploration may end early. explore_lite sends the
+///   same goal and times out there (users report the robot stuck in large open areas with the
+///   goal on its own spot: hrnr/m-explore issue 52).
+/// - **Metric sizes.** `min_frontier_size` and the resolution are metres: on polygons whose
+///   units are not (the art-gallery benchmarks), openings shorter than 0.5 units are ignored
+///   and passages narrower than two cells closed.
+///
+/// # Departures from explore_lite
+/// - **Discrete stop and scan.** explore_lite replans at `planner_frequency` (1 Hz) while the
+///   robot drives and the map fills in, and may switch goals mid-trip; here the map changes
+///   only at scans, so it plans once per stop and drives the whole trip, then scans.
+/// - **The goal is moved to a safe cell.** explore_lite sends the centroid itself to
+///   move_base; it often lies in unknown space or in an obstacle, where move_base would fail
+///   (or, with planning through unknown space, drive into the unknown). Here the goal is the
+///   reachable safe cell nearest to the centroid (its centre is where the robot scans).
+/// - **Unknown space is never traversed.** explore_lite's planner may plan through unknown
+///   space; here every move lies in cells seen free, so no move can be refused.
+/// - **No progress timeout.** `progress_timeout` (30 s) blacklists a goal the robot does not
+///   get closer to; no time passes without progress in the simulator. Its static-world
+///   counterpart: a frontier whose goal cell is where a scan already stood (the robot's own
+///   cell included) is blacklisted, since a scan there would see nothing new. A frontier with
+///   no reachable safe cell, or no A* path, is blacklisted as move_base's failure would.
+/// - **`orientation_scale`** does nothing in explore_lite either; it is not modelled.
+/// - **Cost and centroid.** explore_lite multiplies the distance (already in metres) by the
+///   resolution once more; here both terms are in metres, `potential_scale · distance −
+///   gain_scale · size · resolution` (with the default 1e-3 the distance barely counts in
+///   either). explore_lite's centroid leaves out the cluster's first cell while dividing by a
+///   size that counts it; here every cell counts in the centroid and the distance.
+/// - **Map size.** The raster grows to at most [`MAX_SIDE_CELLS`] cells a side around the
+///   start (410 m at 0.05 m), as a costmap has a fixed size; nothing is mapped beyond, and
+///   its edge is no frontier.
+///
+/// Its whole state is serialisable.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 pub struct ExploreLite {
     params: ExploreLiteParams,
@@ -270,6 +288,9 @@ impl ExploreLite {
     /// After a scan at `at`: the cheapest reachable frontier's trip, or done.
     fn plan(&mut self, at: Point) -> Action<Point> {
         let frontiers = self.raster.frontiers(at, &self.params);
+        if frontiers.is_empty() {
+            return Action::Done;
+        }
         let entries = self.entries(at);
         let reach = self.raster.reachable(&entries);
         let here = self.raster.cell_of(at);
@@ -585,6 +606,7 @@ impl Raster {
                     }
                     if let Some(j) = self.local([x, row])
                         && self.cells[j] & STATE == UNKNOWN
+                        && self.inner(j)
                     {
                         self.cells[j] = (self.cells[j] & !STATE) | FREE;
                     }
@@ -644,6 +666,19 @@ impl Raster {
         self.update_safe(self.origin, end, k);
     }
 
+    /// Whether a local index is at least [`MARGIN`] cells from the box's edge.
+    fn inner(&self, i: usize) -> bool {
+        let [w, h] = self.size;
+        let (x, y) = (i % w, i / w);
+        x >= MARGIN && y >= MARGIN && x + MARGIN < w && y + MARGIN < h
+    }
+
+    /// The local index offsets of [`NEIGHBOURS`], for cells away from the box's edge.
+    fn offsets(&self) -> [isize; 8] {
+        let w = self.size[0] as isize;
+        NEIGHBOURS.map(|[dx, dy]| dx as isize + dy as isize * w)
+    }
+
     /// The 4- and 8-neighbourhoods of a local index (within the box).
     fn neighbours(&self, i: usize, eight: bool) -> impl Iterator<Item = usize> + use<> {
         let [w, h] = self.size;
@@ -688,16 +723,22 @@ impl Raster {
         let reference = self.centre(self.global(pos));
         let mut visited = vec![false; n];
         let mut flagged = vec![false; n];
+        // Free cells keep MARGIN from the box's edge: the cells met below are never on it.
+        let off = self.offsets();
+        let step = |i: usize, o: isize| i.wrapping_add_signed(o);
+        // Unknown cells in the margin (reached only when the raster is at its largest) are
+        // beyond the map, not frontiers.
         let is_new_frontier = |i: usize, flagged: &[bool]| {
             self.cells[i] & STATE == UNKNOWN
                 && !flagged[i]
-                && self.neighbours(i, false).any(|j| self.cells[j] & STATE == FREE)
+                && off[..4].iter().any(|&o| self.cells[step(i, o)] & STATE == FREE)
+                && self.inner(i)
         };
         let mut out = Vec::new();
         let mut q = VecDeque::from([start]);
         visited[start] = true;
         while let Some(i) = q.pop_front() {
-            for j in self.neighbours(i, false) {
+            for j in off[..4].iter().map(|&o| step(i, o)) {
                 if free(j) && !visited[j] {
                     visited[j] = true;
                     q.push_back(j);
@@ -712,7 +753,7 @@ impl Raster {
                         sum = [sum[0] + p[0], sum[1] + p[1]];
                         min_distance =
                             min_distance.min((p[0] - reference[0]).hypot(p[1] - reference[1]));
-                        for d in self.neighbours(c, true) {
+                        for d in off.iter().map(|&o| step(c, o)) {
                             if is_new_frontier(d, &flagged) {
                                 flagged[d] = true;
                                 cq.push_back(d);
@@ -733,26 +774,20 @@ impl Raster {
     }
 
     /// The safe 8-neighbours of a local index a move may step to (a diagonal only when both
-    /// orthogonal cells are safe), with the step's cost.
+    /// orthogonal cells are safe), with the step's cost. Safe cells are free, so they keep
+    /// [`MARGIN`] from the box's edge and their neighbours are indexed unchecked.
     fn safe_steps(&self, i: usize) -> impl Iterator<Item = (usize, u64)> + '_ {
-        let w = self.size[0];
-        let safe = move |j: usize| self.cells[j] & SAFE != 0;
-        let (x, y) = ((i % w) as i64, (i / w) as i64);
-        let h = self.size[1];
-        let at = move |dx: i64, dy: i64| {
-            let (nx, ny) = (x + dx, y + dy);
-            (nx >= 0 && ny >= 0 && (nx as usize) < w && (ny as usize) < h)
-                .then(|| ny as usize * w + nx as usize)
-                .filter(|&j| safe(j))
-        };
-        NEIGHBOURS.into_iter().filter_map(move |[dx, dy]| {
-            let j = at(dx, dy)?;
+        let w = self.size[0] as isize;
+        let safe = move |o: isize| self.cells[i.wrapping_add_signed(o)] & SAFE != 0;
+        NEIGHBOURS.into_iter().zip(self.offsets()).filter_map(move |([dx, dy], o)| {
+            if !safe(o) {
+                return None;
+            }
             if dx != 0 && dy != 0 {
-                at(dx, 0)?;
-                at(0, dy)?;
-                Some((j, DIAGONAL))
+                (safe(dx as isize) && safe(dy as isize * w))
+                    .then_some((i.wrapping_add_signed(o), DIAGONAL))
             } else {
-                Some((j, STEP))
+                Some((i.wrapping_add_signed(o), STEP))
             }
         })
     }
@@ -1074,6 +1109,27 @@ mod tests {
             assert_eq!(free.len(), 13 * 8, "columns 1..=13, rows 1..=8");
             assert!(r.frontiers([0.52, 0.47], &ExploreLiteParams::default()).is_empty());
         }
+    }
+
+    #[test]
+    fn the_raster_stops_at_its_largest_side_and_keeps_free_cells_off_its_edge() {
+        // A corridor 20 000 cells long at 1 m: the raster holds MAX_SIDE_CELLS of it around
+        // the viewpoint, and no free cell comes within MARGIN of its edge.
+        let v = rectangle([-10_000.5, 0.5], [10_000.5, 9.5], [false, false, false, false]);
+        let r = raster_of(1.0, &[&v]);
+        assert_eq!(r.size[0] as i64, MAX_SIDE_CELLS);
+        assert!(r.size[1] < 200);
+        for i in 0..r.cells.len() {
+            if r.cells[i] & STATE == FREE {
+                assert!(r.inner(i), "{:?}", r.global(i));
+            }
+        }
+        let free = r.cells.iter().filter(|&&c| c & STATE == FREE).count();
+        assert_eq!(free, (MAX_SIDE_CELLS as usize - 2 * MARGIN) * 8);
+        // The searches run to the edge without leaving the box, and the map's edge is no
+        // frontier.
+        let f = r.frontiers([0.0, 5.0], &ExploreLiteParams::default());
+        assert!(f.is_empty(), "{f:?}");
     }
 
     #[test]
