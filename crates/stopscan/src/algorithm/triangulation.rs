@@ -8,10 +8,137 @@ use spade::{
 };
 
 use crate::geometry::{Domain, EdgeId};
-use crate::kernel::Point;
+use crate::kernel::{Point, orient_sign};
 
 /// "No triangle": the other side of a domain edge.
 pub const NONE: u32 = u32::MAX;
+
+/// In [`Cell::adj`], marks a side that is a domain edge; the low bits are the edge's ring.
+pub(crate) const WALL: u32 = 1 << 31;
+
+/// The most triangles a mesh may have: [`Cell::adj`] packs a neighbour's index with the
+/// shared side's number (2 bits) below [`WALL`]. (A polygon with holes has at least n − 2
+/// triangles for n vertices, so vertex indices stay below [`WALL`] too.)
+const MAX_TRIANGLES: usize = 1 << 29;
+
+/// One triangle as the triangular expansion reads it, 24 bytes: per side `k` (opposite
+/// corner `k`), what lies across it and the far corner there. Side `k` leads to triangle
+/// `adj[k] >> 2` through that triangle's side `adj[k] & 3`, whose opposite corner is
+/// `coords[opp[k]]`; when `adj[k]` has the [`WALL`] bit, side `k` is the domain edge
+/// `EdgeId { ring: adj[k] & !WALL, index: opp[k] }`, so a piece of the region is named
+/// without reading anything else.
+///
+/// With the far corner here, one expansion step needs the next triangle's cell and the far
+/// corner's coordinates, and both addresses are known at once, so the two loads overlap
+/// instead of waiting for each other.
+#[derive(Debug, Clone, Copy)]
+pub(crate) struct Cell {
+    /// Across each side: neighbour and mirror side, or the domain edge.
+    pub(crate) adj: [u32; 3],
+    /// The corner of the neighbour opposite the shared side, as an index into
+    /// [`Mesh::coords`] (at a domain edge: the edge's index in its ring).
+    pub(crate) opp: [u32; 3],
+}
+
+/// A uniform grid over the mesh's bounding box naming, for each cell, a triangle near it
+/// (with its corners as indices into [`Mesh::coords`]): where [`Mesh::locate`]'s walk starts.
+/// About two triangles per cell, so walks are a few steps long.
+#[derive(Debug, Default)]
+struct Grid {
+    lo: Point,
+    /// Cells per unit length, on each axis.
+    scale: [f64; 2],
+    side: [usize; 2],
+    starts: Vec<GridStart>,
+    /// Steps before a walk gives up (a visibility walk can circle in a constrained
+    /// triangulation).
+    max_steps: usize,
+}
+
+#[derive(Debug, Clone, Copy)]
+struct GridStart {
+    t: u32,
+    c: [u32; 3],
+}
+
+impl Grid {
+    /// `coord_at[v]`: the index of vertex `v` in [`Mesh::coords`].
+    fn new(mesh: &Mesh, coord_at: &[u32]) -> Self {
+        let n = mesh.tri.len();
+        if n == 0 {
+            return Self::default();
+        }
+        let (mut lo, mut hi) = ([f64::MAX; 2], [f64::MIN; 2]);
+        for p in &mesh.coords {
+            lo = [lo[0].min(p[0]), lo[1].min(p[1])];
+            hi = [hi[0].max(p[0]), hi[1].max(p[1])];
+        }
+        let (w, h) =
+            ((hi[0] - lo[0]).max(f64::MIN_POSITIVE), (hi[1] - lo[1]).max(f64::MIN_POSITIVE));
+        // Square cells, about n / 2 of them.
+        let cell = (w * h / (n as f64 / 2.0).max(1.0)).sqrt();
+        let side = [
+            ((w / cell).ceil() as usize).clamp(1, 1 << 15),
+            ((h / cell).ceil() as usize).clamp(1, 1 << 15),
+        ];
+        let scale = [side[0] as f64 / w, side[1] as f64 / h];
+        let mut grid =
+            Self { lo, scale, side, starts: Vec::new(), max_steps: 64 + 4 * (side[0] + side[1]) };
+        // Each triangle claims the cell of its centroid (the first to come keeps it) ...
+        let mut owner = vec![NONE; side[0] * side[1]];
+        for (t, v) in mesh.tri.iter().enumerate() {
+            let c = v.map(|i| mesh.points[i as usize]);
+            let centroid =
+                [(c[0][0] + c[1][0] + c[2][0]) / 3.0, (c[0][1] + c[1][1] + c[2][1]) / 3.0];
+            let g = grid.cell(centroid);
+            if owner[g] == NONE {
+                owner[g] = t as u32;
+            }
+        }
+        // ... and cells without one take a neighbour's, breadth first from the claimed ones.
+        let mut queue: std::collections::VecDeque<usize> =
+            (0..owner.len()).filter(|&g| owner[g] != NONE).collect();
+        while let Some(g) = queue.pop_front() {
+            let (x, y) = (g % side[0], g / side[0]);
+            let next = [
+                (x > 0).then(|| g - 1),
+                (x + 1 < side[0]).then_some(g + 1),
+                (y > 0).then(|| g - side[0]),
+                (y + 1 < side[1]).then_some(g + side[0]),
+            ];
+            for h in next.into_iter().flatten() {
+                if owner[h] == NONE {
+                    owner[h] = owner[g];
+                    queue.push_back(h);
+                }
+            }
+        }
+        grid.starts = owner
+            .iter()
+            .map(|&t| GridStart { t, c: mesh.tri[t as usize].map(|i| coord_at[i as usize]) })
+            .collect();
+        grid
+    }
+
+    /// The cell holding `p` (clamped to the grid).
+    fn cell(&self, p: Point) -> usize {
+        let x = (((p[0] - self.lo[0]) * self.scale[0]) as usize).min(self.side[0] - 1);
+        let y = (((p[1] - self.lo[1]) * self.scale[1]) as usize).min(self.side[1] - 1);
+        y * self.side[0] + x
+    }
+
+    /// Where a walk to `p` starts; `None` outside the bounding box (and for an empty mesh).
+    fn start(&self, p: Point) -> Option<GridStart> {
+        if self.starts.is_empty() {
+            return None;
+        }
+        let (x, y) = ((p[0] - self.lo[0]) * self.scale[0], (p[1] - self.lo[1]) * self.scale[1]);
+        if !(x >= 0.0 && y >= 0.0 && x <= self.side[0] as f64 && y <= self.side[1] as f64) {
+            return None;
+        }
+        Some(self.starts[self.cell(p)])
+    }
+}
 
 #[derive(Debug, Clone, Copy)]
 struct Vertex {
@@ -35,6 +162,9 @@ pub enum TriangulationError {
     /// spade refused a vertex (out of its range); a validated domain never triggers this.
     #[error("the triangulation rejected a vertex: {0}")]
     Insertion(String),
+    /// More triangles than the compact mesh can number (2^29).
+    #[error("the triangulation has {0} triangles, more than the 2^29 the mesh can hold")]
+    TooLarge(usize),
 }
 
 /// Where a point lies in the mesh.
@@ -68,8 +198,41 @@ pub struct Mesh {
     /// For each vertex, a triangle `t` and index `i` with `tri[t][i] = v` and the domain edge
     /// `v → next(v)` as the triangle's edge `tri[t][i] → tri[t][i+1]`.
     pub(crate) vertex_fan: Vec<(u32, u8)>,
+    /// `cells[t]`: triangle `t` packed for the expansion ([`Cell`]).
+    pub(crate) cells: Vec<Cell>,
+    /// The vertex coordinates again, numbered in the order the (renumbered) triangles first
+    /// use them, so that a triangle's corners lie near its neighbours' in memory.
+    pub(crate) coords: Vec<Point>,
+    /// Where point location starts its walk ([`Grid`]).
+    grid: Grid,
     face_map: Vec<u32>,
+    /// Spade's first free-space triangle, renumbered ([`Mesh::first_triangle`]).
+    first: u32,
     cdt: Cdt,
+}
+
+/// The Hilbert curve's grid: 2^16 cells a side.
+const HILBERT_SIDE: u32 = 1 << 16;
+
+/// The position of cell `(x, y)` along the Hilbert curve through a `HILBERT_SIDE`² grid.
+fn hilbert_index(mut x: u32, mut y: u32) -> u64 {
+    let mut d = 0u64;
+    let mut s = HILBERT_SIDE / 2;
+    while s > 0 {
+        let rx = u32::from(x & s != 0);
+        let ry = u32::from(y & s != 0);
+        d += u64::from(s) * u64::from(s) * u64::from((3 * rx) ^ ry);
+        // Rotate the quadrant so the curve's pieces join.
+        if ry == 0 {
+            if rx == 1 {
+                x = HILBERT_SIDE - 1 - x;
+                y = HILBERT_SIDE - 1 - y;
+            }
+            std::mem::swap(&mut x, &mut y);
+        }
+        s /= 2;
+    }
+    d
 }
 
 impl Mesh {
@@ -107,10 +270,19 @@ impl Mesh {
             nbr: Vec::new(),
             mirror: Vec::new(),
             vertex_fan: Vec::new(),
+            cells: Vec::new(),
+            coords: Vec::new(),
+            grid: Grid::default(),
             face_map: Vec::new(),
+            first: NONE,
             cdt,
         };
         mesh.classify();
+        if mesh.tri.len() > MAX_TRIANGLES {
+            return Err(TriangulationError::TooLarge(mesh.tri.len()));
+        }
+        let coord_at = mesh.pack();
+        mesh.grid = Grid::new(&mesh, &coord_at);
         Ok(mesh)
     }
 
@@ -178,6 +350,115 @@ impl Mesh {
                 }
             }
         }
+        self.first = if self.tri.is_empty() { NONE } else { 0 };
+        self.renumber();
+    }
+
+    /// Renumbers the triangles along a Hilbert curve through their centroids, so that
+    /// triangles near each other in the plane are near each other in memory: the expansion
+    /// walks from a triangle to its neighbours, and on large maps (100,000 vertices) spade's
+    /// face order scatters them over megabytes. Deterministic (ties by spade's order); each
+    /// triangle keeps its corners' rotation, so every output is unchanged.
+    fn renumber(&mut self) {
+        let n = self.tri.len();
+        if n < 2 {
+            return;
+        }
+        let (mut lo, mut hi) = ([f64::MAX; 2], [f64::MIN; 2]);
+        for p in &self.points {
+            lo = [lo[0].min(p[0]), lo[1].min(p[1])];
+            hi = [hi[0].max(p[0]), hi[1].max(p[1])];
+        }
+        let side = f64::from(HILBERT_SIDE - 1);
+        let scale = [
+            side / (hi[0] - lo[0]).max(f64::MIN_POSITIVE),
+            side / (hi[1] - lo[1]).max(f64::MIN_POSITIVE),
+        ];
+        let mut keys: Vec<(u64, u32)> = self
+            .tri
+            .iter()
+            .enumerate()
+            .map(|(t, v)| {
+                let c = v.map(|i| self.points[i as usize]);
+                let cell = |a: usize| {
+                    let x = (c[0][a] + c[1][a] + c[2][a]) / 3.0;
+                    ((x - lo[a]) * scale[a]).clamp(0.0, side) as u32
+                };
+                (hilbert_index(cell(0), cell(1)), t as u32)
+            })
+            .collect();
+        keys.sort_unstable();
+        let mut new_of = vec![0u32; n];
+        for (new, &(_, old)) in keys.iter().enumerate() {
+            new_of[old as usize] = new as u32;
+        }
+        let map = |t: u32| if t == NONE { NONE } else { new_of[t as usize] };
+        let order = |old: usize| keys[old].1 as usize;
+        self.tri = (0..n).map(|i| self.tri[order(i)]).collect();
+        self.nbr = (0..n).map(|i| self.nbr[order(i)].map(map)).collect();
+        self.mirror = (0..n).map(|i| self.mirror[order(i)]).collect();
+        for f in &mut self.vertex_fan {
+            f.0 = map(f.0);
+        }
+        for t in &mut self.face_map {
+            *t = map(*t);
+        }
+        self.first = map(self.first);
+    }
+
+    /// Builds [`Mesh::cells`] and [`Mesh::coords`] from the triangle arrays;
+    /// returns each vertex's index in `coords`.
+    fn pack(&mut self) -> Vec<u32> {
+        // Coordinates in the order the triangles first use them.
+        let mut at = vec![NONE; self.points.len()];
+        self.coords = Vec::with_capacity(self.points.len());
+        for v in &self.tri {
+            for &i in v {
+                if at[i as usize] == NONE {
+                    at[i as usize] = self.coords.len() as u32;
+                    self.coords.push(self.points[i as usize]);
+                }
+            }
+        }
+        self.cells = Vec::with_capacity(self.tri.len());
+        for t in 0..self.tri.len() {
+            let v = self.tri[t];
+            let (mut adj, mut opp) = ([0; 3], [0; 3]);
+            for k in 0..3 {
+                match self.nbr[t][k] {
+                    NONE => {
+                        let e = self.edge_of(v[(k + 1) % 3]);
+                        adj[k] = WALL | e.ring;
+                        opp[k] = e.index;
+                    }
+                    u => {
+                        let m = self.mirror[t][k];
+                        adj[k] = (u << 2) | u32::from(m);
+                        opp[k] = at[self.tri[u as usize][m as usize] as usize];
+                    }
+                }
+            }
+            self.cells.push(Cell { adj, opp });
+        }
+        at
+    }
+
+    /// The first vertex of a domain edge.
+    pub(crate) fn edge_start(&self, e: EdgeId) -> u32 {
+        self.ring_start[e.ring as usize] + e.index
+    }
+
+    /// The last vertex of a domain edge (the next of its ring).
+    pub(crate) fn edge_end(&self, e: EdgeId) -> u32 {
+        let (s, end) = (self.ring_start[e.ring as usize], self.ring_start[e.ring as usize + 1]);
+        if s + e.index + 1 == end { s } else { s + e.index + 1 }
+    }
+
+    /// The free-space triangle spade lists first (before [`Mesh::renumber`]): a fixed
+    /// triangle for callers that want "some triangle" and must get the same one as before
+    /// the renumbering.
+    pub(crate) fn first_triangle(&self) -> u32 {
+        self.first
     }
 
     /// Vertex coordinates.
@@ -209,10 +490,53 @@ impl Mesh {
     }
 
     /// Locates a point exactly.
+    ///
+    /// A point strictly inside a triangle is found by a short walk from the triangle the
+    /// [`Grid`] names for its cell; on an edge or a vertex, or when the walk meets a domain
+    /// edge, spade's hierarchy locates it (the same answers, spade picks which triangle names
+    /// an inner edge).
     pub fn locate(&self, p: Point) -> MeshLocation {
         if !(p[0].is_finite() && p[1].is_finite()) {
             return MeshLocation::Outside;
         }
+        if let Some(t) = self.walk_to(p) {
+            return MeshLocation::Face(t);
+        }
+        self.locate_spade(p)
+    }
+
+    /// The triangle that holds `p` strictly inside, found by a visibility walk from the grid's
+    /// start triangle; `None` when `p` is on an edge or vertex, or the walk meets a domain
+    /// edge or runs long.
+    fn walk_to(&self, p: Point) -> Option<u32> {
+        let start = self.grid.start(p)?;
+        let (mut t, mut c) = (start.t, start.c.map(|i| self.coords[i as usize]));
+        for step in 0..self.grid.max_steps {
+            let o = [
+                orient_sign(c[1], c[2], p),
+                orient_sign(c[2], c[0], p),
+                orient_sign(c[0], c[1], p),
+            ];
+            if o == [1, 1, 1] {
+                return Some(t);
+            }
+            // Leave through a side with p strictly beyond it (starting the search at a side
+            // that changes with the step, so the walk cannot circle), never through a wall.
+            let cell = &self.cells[t as usize];
+            let k =
+                (0..3).map(|j| (j + step) % 3).find(|&k| o[k] < 0 && cell.adj[k] & WALL == 0)?;
+            let (n, m) = (cell.adj[k] >> 2, (cell.adj[k] & 3) as usize);
+            let mut d = [[0.0; 2]; 3];
+            d[m] = self.coords[cell.opp[k] as usize];
+            d[(m + 1) % 3] = c[(k + 2) % 3];
+            d[(m + 2) % 3] = c[(k + 1) % 3];
+            (t, c) = (n, d);
+        }
+        None
+    }
+
+    /// [`Mesh::locate`] through spade's point location.
+    fn locate_spade(&self, p: Point) -> MeshLocation {
         match self.cdt.locate(Point2::new(p[0], p[1])) {
             PositionInTriangulation::OnFace(f) => match self.face_map[f.index()] {
                 NONE => MeshLocation::Outside,

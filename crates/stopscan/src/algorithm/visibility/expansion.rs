@@ -14,7 +14,8 @@
 
 use super::{BoundaryPiece, VisibilityError, VisibilityRegion};
 use crate::algorithm::shortest_path::walk;
-use crate::algorithm::triangulation::{Mesh, MeshLocation, NONE};
+use crate::algorithm::triangulation::{Mesh, MeshLocation, NONE, WALL};
+use crate::geometry::EdgeId;
 use crate::kernel::{Point, orient_sign};
 
 /// Reusable buffers for [`expand`].
@@ -23,16 +24,33 @@ pub struct Scratch {
     /// Whether a vertex was met exactly on a cone's bounding ray (only then can a gap hold
     /// domain edges seen edge-on, and gaps are walked).
     collinear: bool,
-    stack: Vec<(u32, u8, u32, u32)>,
-    starts: Vec<(u32, u8, u32, u32)>,
+    stack: Vec<Cone>,
+    starts: Vec<Cone>,
     pieces: Vec<Piece>,
+}
+
+/// A triangle side `er → el` (counter-clockwise in the triangle being left), entered with the
+/// view cone from the right bound `r` to the left bound `l` (input vertices). It carries what
+/// its step needs: the coordinates, and the side's entry of the triangle's [`Cell`] (what lies
+/// across, and the far corner there), read when the cone was made.
+#[derive(Debug, Clone, Copy)]
+struct Cone {
+    r: Point,
+    l: Point,
+    er: Point,
+    el: Point,
+    across: u32,
+    opp: u32,
 }
 
 #[derive(Debug, Clone, Copy)]
 struct Piece {
     from: Point,
     to: Point,
-    edge_start: u32,
+    /// The domain edge the piece lies on, with its ends' coordinates.
+    edge: EdgeId,
+    wall_from: Point,
+    wall_to: Point,
     full: bool,
 }
 
@@ -54,9 +72,11 @@ pub fn expand(
     let pts = mesh.points();
     scratch.starts.clear();
     let starts = &mut scratch.starts;
-    let push_start = |t: u32, k: u8, starts: &mut Vec<(u32, u8, u32, u32)>| {
-        let v = tri[t as usize];
-        starts.push((t, k, v[(k as usize + 1) % 3], v[(k as usize + 2) % 3]));
+    let push_start = |t: u32, k: u8, starts: &mut Vec<Cone>| {
+        let (v, k) = (tri[t as usize], k as usize);
+        let (er, el) = (pts[v[(k + 1) % 3] as usize], pts[v[(k + 2) % 3] as usize]);
+        let cell = &mesh.cells[t as usize];
+        starts.push(Cone { r: er, l: el, er, el, across: cell.adj[k], opp: cell.opp[k] });
     };
     // Pieces along the domain edges through q itself (boundary queries), before/after.
     let mut lead: Option<Piece> = None;
@@ -79,15 +99,24 @@ pub fn expand(
         MeshLocation::BoundaryEdge(t, s) => {
             let v = tri[t as usize];
             let (a, b) = (v[(s as usize + 1) % 3], v[(s as usize + 2) % 3]);
-            lead = Some(Piece { from: q, to: pts[b as usize], edge_start: a, full: false });
+            let edge = mesh.edge_of(a);
+            let (wall_from, wall_to) = (pts[a as usize], pts[b as usize]);
+            lead = Some(Piece { from: q, to: wall_to, edge, wall_from, wall_to, full: false });
             push_start(t, (s + 1) % 3, starts);
             push_start(t, (s + 2) % 3, starts);
-            tail = Some(Piece { from: pts[a as usize], to: q, edge_start: a, full: false });
+            tail = Some(Piece { from: wall_from, to: q, edge, wall_from, wall_to, full: false });
         }
         MeshLocation::Vertex(v) => {
             let (mut t, mut i) = mesh.vertex_fan[v as usize];
             let next = tri[t as usize][(i as usize + 1) % 3];
-            lead = Some(Piece { from: q, to: pts[next as usize], edge_start: v, full: true });
+            lead = Some(Piece {
+                from: q,
+                to: pts[next as usize],
+                edge: mesh.edge_of(v),
+                wall_from: q,
+                wall_to: pts[next as usize],
+                full: true,
+            });
             loop {
                 push_start(t, i, starts);
                 let side = (i as usize + 1) % 3;
@@ -97,7 +126,9 @@ pub fn expand(
                     tail = Some(Piece {
                         from: pts[prev as usize],
                         to: q,
-                        edge_start: prev,
+                        edge: mesh.edge_of(prev),
+                        wall_from: pts[prev as usize],
+                        wall_to: q,
                         full: true,
                     });
                     break;
@@ -124,52 +155,65 @@ pub fn expand(
 
 /// The depth-first expansion from one start cone, appending pieces in CCW order. Returns
 /// whether a vertex lay exactly on a bounding ray.
+///
+/// A step reads the far corner's coordinates and the next triangle's cell, both addressed by
+/// the cone itself. The bounds travel as coordinates, and a bound is the edge's own vertex
+/// exactly when their coordinates are equal (a valid domain has no two vertices at one point).
 #[inline]
-fn run(
-    mesh: &Mesh,
-    q: Point,
-    start: (u32, u8, u32, u32),
-    stack: &mut Vec<(u32, u8, u32, u32)>,
-    pieces: &mut Vec<Piece>,
-) -> bool {
+fn run(mesh: &Mesh, q: Point, start: Cone, stack: &mut Vec<Cone>, pieces: &mut Vec<Piece>) -> bool {
     let mut collinear = false;
-    let (tri, nbr, mirror, pts) = (&mesh.tri, &mesh.nbr, &mesh.mirror, mesh.points());
+    let (cells, coords) = (&mesh.cells, &mesh.coords);
     stack.push(start);
-    while let Some((t, k, r, l)) = stack.pop() {
-        let tv = tri[t as usize];
-        let n = nbr[t as usize][k as usize];
-        if n == NONE {
-            let (er, el) = (tv[(k as usize + 1) % 3], tv[(k as usize + 2) % 3]);
-            let (pr, pl) = (pts[r as usize], pts[l as usize]);
-            let (per, pel) = (pts[er as usize], pts[el as usize]);
-            let full_r = r == er || orient_sign(q, pr, per) == 0;
-            let full_l = l == el || orient_sign(q, pl, pel) == 0;
-            collinear |= (r != er && full_r) || (l != el && full_l);
+    while let Some(Cone { r: pr, l: pl, er: per, el: pel, across, opp }) = stack.pop() {
+        if across & WALL != 0 {
+            let edge = EdgeId { ring: across & !WALL, index: opp };
+            let full_r = pr == per || orient_sign(q, pr, per) == 0;
+            let full_l = pl == pel || orient_sign(q, pl, pel) == 0;
+            collinear |= (pr != per && full_r) || (pl != pel && full_l);
             let from = if full_r { per } else { ray_hit(q, pr, per, pel) };
             let to = if full_l { pel } else { ray_hit(q, pl, per, pel) };
-            pieces.push(Piece { from, to, edge_start: er, full: full_r && full_l });
+            let full = full_r && full_l;
+            pieces.push(Piece { from, to, edge, wall_from: per, wall_to: pel, full });
             continue;
         }
-        let m = mirror[t as usize][k as usize] as usize;
-        let c = tri[n as usize][m];
-        let pc = pts[c as usize];
-        let sr = orient_sign(q, pts[r as usize], pc);
+        let (n, m) = ((across >> 2) as usize, (across & 3) as usize);
+        let pc = coords[opp as usize];
+        let cell = &cells[n];
+        // The sub-sides (e_r, c) and (c, e_l): sides m + 1 and m + 2 of the next triangle.
+        let (sub_r, sub_l) = ((m + 1) % 3, (m + 2) % 3);
+        let right = |l: Point| Cone {
+            r: pr,
+            l,
+            er: per,
+            el: pc,
+            across: cell.adj[sub_r],
+            opp: cell.opp[sub_r],
+        };
+        let left = |r: Point| Cone {
+            r,
+            l: pl,
+            er: pc,
+            el: pel,
+            across: cell.adj[sub_l],
+            opp: cell.opp[sub_l],
+        };
+        let sr = orient_sign(q, pr, pc);
         if sr == 0 {
             collinear = true;
         }
         if sr <= 0 {
             // c on or right of R: only the left sub-side (c, e_l) is seen.
-            stack.push((n, ((m + 2) % 3) as u8, r, l));
+            stack.push(left(pr));
             continue;
         }
-        let sl = orient_sign(q, pts[l as usize], pc);
+        let sl = orient_sign(q, pl, pc);
         collinear |= sl == 0;
         if sl >= 0 {
             // c on or left of L: only the right sub-side (e_r, c) is seen.
-            stack.push((n, ((m + 1) % 3) as u8, r, l));
+            stack.push(right(pl));
         } else {
-            stack.push((n, ((m + 2) % 3) as u8, c, l));
-            stack.push((n, ((m + 1) % 3) as u8, r, c));
+            stack.push(left(pc));
+            stack.push(right(pc));
         }
     }
     collinear
@@ -187,9 +231,8 @@ fn ray_hit(q: Point, through: Point, a: Point, b: Point) -> Point {
 
 fn assemble(mesh: &Mesh, q: Point, pieces: &[Piece], collinear: bool, out: &mut VisibilityRegion) {
     let n = pieces.len();
-    let pts = mesh.points();
     for (i, p) in pieces.iter().enumerate() {
-        let edge = mesh.edge_of(p.edge_start);
+        let edge = p.edge;
         if out.polygon.last() != Some(&p.from) {
             out.polygon.push(p.from);
         }
@@ -205,9 +248,8 @@ fn assemble(mesh: &Mesh, q: Point, pieces: &[Piece], collinear: bool, out: &mut 
         if np.from != p.to {
             // Which ends of the gap are domain vertices (a piece ends exactly on its edge's
             // vertex or at a constructed point).
-            let end = mesh.ring_next(p.edge_start);
-            let va = (pts[end as usize] == p.to).then_some(end);
-            let vb = (pts[np.edge_start as usize] == np.from).then_some(np.edge_start);
+            let va = (p.wall_to == p.to).then(|| mesh.edge_end(p.edge));
+            let vb = (np.wall_from == np.from).then(|| mesh.edge_start(np.edge));
             if collinear
                 || va.zip(vb).is_some_and(|(v, w)| mesh.ring_next(w) == v || mesh.ring_next(v) == w)
             {
