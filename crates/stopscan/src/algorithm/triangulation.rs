@@ -203,6 +203,8 @@ pub struct Mesh {
     /// The vertex coordinates again, numbered in the order the (renumbered) triangles first
     /// use them, so that a triangle's corners lie near its neighbours' in memory.
     pub(crate) coords: Vec<Point>,
+    /// `coords[coord_at[v]]` is vertex `v`'s position.
+    pub(crate) coord_at: Vec<u32>,
     /// Where point location starts its walk ([`Grid`]).
     grid: Grid,
     face_map: Vec<u32>,
@@ -272,6 +274,7 @@ impl Mesh {
             vertex_fan: Vec::new(),
             cells: Vec::new(),
             coords: Vec::new(),
+            coord_at: Vec::new(),
             grid: Grid::default(),
             face_map: Vec::new(),
             first: NONE,
@@ -281,8 +284,8 @@ impl Mesh {
         if mesh.tri.len() > MAX_TRIANGLES {
             return Err(TriangulationError::TooLarge(mesh.tri.len()));
         }
-        let coord_at = mesh.pack();
-        mesh.grid = Grid::new(&mesh, &coord_at);
+        mesh.coord_at = mesh.pack();
+        mesh.grid = Grid::new(&mesh, &mesh.coord_at);
         Ok(mesh)
     }
 
