@@ -27,6 +27,8 @@ pub struct Scratch {
     stack: Vec<Cone>,
     starts: Vec<Cone>,
     pieces: Vec<Piece>,
+    /// The vertices met along a gap ([`gap`]).
+    stops: Vec<(Point, Option<u32>)>,
 }
 
 /// A triangle side `er → el` (counter-clockwise in the triangle being left), entered with the
@@ -151,7 +153,7 @@ pub fn expand(
     if let Some(p) = tail {
         scratch.pieces.push(p);
     }
-    assemble(mesh, q, &scratch.pieces, scratch.collinear, out);
+    assemble(mesh, q, &scratch.pieces, scratch.collinear, &mut scratch.stops, out);
     Ok(())
 }
 
@@ -220,7 +222,14 @@ fn ray_hit(q: Point, through: Point, a: Point, b: Point) -> Point {
     [q[0] + t * dx, q[1] + t * dy]
 }
 
-fn assemble(mesh: &Mesh, q: Point, pieces: &[Piece], collinear: bool, out: &mut VisibilityRegion) {
+fn assemble(
+    mesh: &Mesh,
+    q: Point,
+    pieces: &[Piece],
+    collinear: bool,
+    stops: &mut Vec<(Point, Option<u32>)>,
+    out: &mut VisibilityRegion,
+) {
     let n = pieces.len();
     for (i, p) in pieces.iter().enumerate() {
         let edge = p.edge;
@@ -244,7 +253,7 @@ fn assemble(mesh: &Mesh, q: Point, pieces: &[Piece], collinear: bool, out: &mut 
             if collinear
                 || va.zip(vb).is_some_and(|(v, w)| mesh.ring_next(w) == v || mesh.ring_next(v) == w)
             {
-                gap(mesh, q, (p.to, va), (np.from, vb), out);
+                gap(mesh, q, (p.to, va), (np.from, vb), stops, out);
             } else {
                 window(q, p.to, np.from, out);
             }
@@ -267,13 +276,15 @@ fn gap(
     q: Point,
     (a, va): (Point, Option<u32>),
     (b, vb): (Point, Option<u32>),
+    stops: &mut Vec<(Point, Option<u32>)>,
     out: &mut VisibilityRegion,
 ) {
     let pts = mesh.points();
     // Walk from an end that is a vertex: a constructed end may round to just outside.
     let backward = va.is_none() && vb.is_some();
     let (s, e) = if backward { ((b, vb), (a, va)) } else { ((a, va), (b, vb)) };
-    let mut stops: Vec<(Point, Option<u32>)> = vec![s];
+    stops.clear();
+    stops.push(s);
     walk(mesh, s.0, e.0, |v| {
         if pts[v as usize] != e.0 {
             stops.push((pts[v as usize], Some(v)));
