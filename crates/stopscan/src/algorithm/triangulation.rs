@@ -622,6 +622,52 @@ mod tests {
     }
 
     #[test]
+    fn packed_cells_renumbering_and_grid_walk() {
+        let d = Domain::new(ring(0.0, 0.0, 10.0), vec![ring(2.0, 2.0, 2.0), ring(6.0, 5.0, 3.0)])
+            .unwrap();
+        let m = Mesh::new(&d).unwrap();
+        // The cells say what the arrays say.
+        for t in 0..m.triangles() {
+            for k in 0..3 {
+                let (a, o) = (m.cells[t].adj[k], m.cells[t].opp[k]);
+                match m.nbr[t][k] {
+                    NONE => {
+                        let e = EdgeId { ring: a & !WALL, index: o };
+                        assert_ne!(a & WALL, 0);
+                        assert_eq!(e, m.edge_of(m.tri[t][(k + 1) % 3]));
+                        assert_eq!(m.edge_start(e), m.tri[t][(k + 1) % 3]);
+                        assert_eq!(m.edge_end(e), m.tri[t][(k + 2) % 3]);
+                    }
+                    u => {
+                        let j = m.mirror[t][k];
+                        assert_eq!(a, (u << 2) | u32::from(j));
+                        let far = m.tri[u as usize][j as usize];
+                        assert_eq!(m.coords[o as usize], m.points[far as usize]);
+                    }
+                }
+            }
+        }
+        for (v, &i) in m.coord_at.iter().enumerate() {
+            assert_eq!(m.coords[i as usize], m.points[v]);
+        }
+        // The renumbering is deterministic, and spade's first triangle is remembered.
+        let again = Mesh::new(&d).unwrap();
+        assert_eq!((&m.tri, &m.nbr, &m.mirror), (&again.tri, &again.nbr, &again.mirror));
+        assert_eq!(m.first_triangle(), again.first_triangle());
+        // The grid walk locates exactly as spade does, on vertices, edges, in holes and
+        // outside; and it answers most interior points itself.
+        let mut walked = 0;
+        for i in -2..=42 {
+            for j in -2..=42 {
+                let p = [f64::from(i) * 0.25, f64::from(j) * 0.25 + 0.01 * f64::from(i % 3)];
+                assert_eq!(m.locate(p), m.locate_spade(p), "at {p:?}");
+                walked += usize::from(m.walk_to(p).is_some());
+            }
+        }
+        assert!(walked > 1000, "{walked}");
+    }
+
+    #[test]
     fn locations() {
         let d = Domain::new(ring(0.0, 0.0, 10.0), vec![ring(2.0, 2.0, 2.0)]).unwrap();
         let m = Mesh::new(&d).unwrap();
