@@ -64,7 +64,7 @@ impl PolygonWorld {
     /// environments that name no start.
     pub fn interior_point(&self) -> Point {
         let m = self.vis.mesh();
-        let t = m.tri.get(m.first_triangle() as usize).copied().unwrap_or([0, 0, 0]);
+        let t = m.tri.first().copied().unwrap_or([0, 0, 0]);
         let p = t.map(|i| m.points()[i as usize]);
         [(p[0][0] + p[1][0] + p[2][0]) / 3.0, (p[0][1] + p[1][1] + p[2][1]) / 3.0]
     }

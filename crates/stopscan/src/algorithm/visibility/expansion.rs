@@ -79,7 +79,7 @@ pub fn expand(
         let (v, k) = (tri[t as usize], k as usize);
         let (er, el) =
             (mesh.coord_at[v[(k + 1) % 3] as usize], mesh.coord_at[v[(k + 2) % 3] as usize]);
-        let cell = &mesh.cells[t as usize];
+        let cell = &mesh.cells[mesh.tri_cell[t as usize] as usize];
         starts.push(Cone { r: er, l: el, er, el, across: cell.adj[k], opp: cell.opp[k] });
     };
     // Pieces along the domain edges through q itself (boundary queries), before/after.
