@@ -22,7 +22,7 @@ pub(crate) const WALL: u32 = 1 << 31;
 const MAX_TRIANGLES: usize = 1 << 29;
 
 /// One triangle as the triangular expansion reads it, 24 bytes: per side `k` (opposite
-/// corner `k`), what lies across it and the far corner there. Side `k` leads to triangle
+/// corner `k`), what lies across it and the far corner there. Side `k` leads to cell
 /// `adj[k] >> 2` through that triangle's side `adj[k] & 3`, whose opposite corner is
 /// `coords[opp[k]]`; when `adj[k]` has the [`WALL`] bit, side `k` is the domain edge
 /// `EdgeId { ring: adj[k] & !WALL, index: opp[k] }`, so a piece of the region is named
@@ -40,8 +40,9 @@ pub(crate) struct Cell {
     pub(crate) opp: [u32; 3],
 }
 
-/// A uniform grid over the mesh's bounding box naming, for each cell, a triangle near it
-/// (with its corners as indices into [`Mesh::coords`]): where [`Mesh::locate`]'s walk starts.
+/// A uniform grid over the mesh's bounding box naming, for each grid cell, a triangle near it
+/// (its [`Cell`], and its corners as indices into [`Mesh::coords`]): where
+/// [`Mesh::locate`]'s walk starts.
 /// About two triangles per cell, so walks are a few steps long.
 #[derive(Debug, Default)]
 struct Grid {
@@ -57,7 +58,9 @@ struct Grid {
 
 #[derive(Debug, Clone, Copy)]
 struct GridStart {
-    t: u32,
+    /// The triangle's index in [`Mesh::cells`].
+    cell: u32,
+    /// Its corners, as indices into [`Mesh::coords`].
     c: [u32; 3],
 }
 
@@ -86,13 +89,13 @@ impl Grid {
             Self { lo, scale, side, starts: Vec::new(), max_steps: 64 + 4 * (side[0] + side[1]) };
         // Each triangle claims the cell of its centroid (the first to come keeps it) ...
         let mut owner = vec![NONE; side[0] * side[1]];
-        for (t, v) in mesh.tri.iter().enumerate() {
-            let c = v.map(|i| mesh.points[i as usize]);
+        for (cell, &t) in mesh.cell_tri.iter().enumerate() {
+            let c = mesh.tri[t as usize].map(|i| mesh.points[i as usize]);
             let centroid =
                 [(c[0][0] + c[1][0] + c[2][0]) / 3.0, (c[0][1] + c[1][1] + c[2][1]) / 3.0];
             let g = grid.cell(centroid);
             if owner[g] == NONE {
-                owner[g] = t as u32;
+                owner[g] = cell as u32;
             }
         }
         // ... and cells without one take a neighbour's, breadth first from the claimed ones.
@@ -115,7 +118,10 @@ impl Grid {
         }
         grid.starts = owner
             .iter()
-            .map(|&t| GridStart { t, c: mesh.tri[t as usize].map(|i| coord_at[i as usize]) })
+            .map(|&cell| {
+                let t = mesh.cell_tri[cell as usize] as usize;
+                GridStart { cell, c: mesh.tri[t].map(|i| coord_at[i as usize]) }
+            })
             .collect();
         grid
     }
@@ -198,16 +204,25 @@ pub struct Mesh {
     /// For each vertex, a triangle `t` and index `i` with `tri[t][i] = v` and the domain edge
     /// `v → next(v)` as the triangle's edge `tri[t][i] → tri[t][i+1]`.
     pub(crate) vertex_fan: Vec<(u32, u8)>,
-    /// `cells[t]`: triangle `t` packed for the expansion ([`Cell`]).
+    /// The triangles packed for the expansion ([`Cell`]), in the order of a Hilbert curve
+    /// through their centroids, so that triangles near each other in the plane are near each
+    /// other in memory (on large maps spade's face order scatters a walk's neighbours over
+    /// megabytes). `cells[tri_cell[t]]` is triangle `t`; triangle numbers (locations,
+    /// [`Mesh::triangle_corners`]) keep spade's order, so nothing outside the expansion
+    /// sees the packing.
     pub(crate) cells: Vec<Cell>,
-    /// The vertex coordinates again, numbered in the order the (renumbered) triangles first
-    /// use them, so that a triangle's corners lie near its neighbours' in memory.
+    /// `cell_tri[c]`: the triangle packed in cell `c`.
+    cell_tri: Vec<u32>,
+    /// `tri_cell[t]`: the cell of triangle `t`.
+    pub(crate) tri_cell: Vec<u32>,
+    /// The vertex coordinates again, numbered in the order the cells first use them, so that
+    /// a triangle's corners lie near its neighbours' in memory.
     pub(crate) coords: Vec<Point>,
+    /// `coords[coord_at[v]]` is vertex `v`'s position.
+    pub(crate) coord_at: Vec<u32>,
     /// Where point location starts its walk ([`Grid`]).
     grid: Grid,
     face_map: Vec<u32>,
-    /// Spade's first free-space triangle, renumbered ([`Mesh::first_triangle`]).
-    first: u32,
     cdt: Cdt,
 }
 
@@ -271,18 +286,20 @@ impl Mesh {
             mirror: Vec::new(),
             vertex_fan: Vec::new(),
             cells: Vec::new(),
+            cell_tri: Vec::new(),
+            tri_cell: Vec::new(),
             coords: Vec::new(),
+            coord_at: Vec::new(),
             grid: Grid::default(),
             face_map: Vec::new(),
-            first: NONE,
             cdt,
         };
         mesh.classify();
         if mesh.tri.len() > MAX_TRIANGLES {
             return Err(TriangulationError::TooLarge(mesh.tri.len()));
         }
-        let coord_at = mesh.pack();
-        mesh.grid = Grid::new(&mesh, &coord_at);
+        mesh.coord_at = mesh.pack();
+        mesh.grid = Grid::new(&mesh, &mesh.coord_at);
         Ok(mesh)
     }
 
@@ -350,20 +367,11 @@ impl Mesh {
                 }
             }
         }
-        self.first = if self.tri.is_empty() { NONE } else { 0 };
-        self.renumber();
     }
 
-    /// Renumbers the triangles along a Hilbert curve through their centroids, so that
-    /// triangles near each other in the plane are near each other in memory: the expansion
-    /// walks from a triangle to its neighbours, and on large maps (100,000 vertices) spade's
-    /// face order scatters them over megabytes. Deterministic (ties by spade's order); each
-    /// triangle keeps its corners' rotation, so every output is unchanged.
-    fn renumber(&mut self) {
-        let n = self.tri.len();
-        if n < 2 {
-            return;
-        }
+    /// The order of the cells: the triangles sorted by the Hilbert index of their centroids
+    /// (ties by triangle number, so deterministic).
+    fn hilbert_order(&self) -> Vec<u32> {
         let (mut lo, mut hi) = ([f64::MAX; 2], [f64::MIN; 2]);
         for p in &self.points {
             lo = [lo[0].min(p[0]), lo[1].min(p[1])];
@@ -388,32 +396,22 @@ impl Mesh {
             })
             .collect();
         keys.sort_unstable();
-        let mut new_of = vec![0u32; n];
-        for (new, &(_, old)) in keys.iter().enumerate() {
-            new_of[old as usize] = new as u32;
-        }
-        let map = |t: u32| if t == NONE { NONE } else { new_of[t as usize] };
-        let order = |old: usize| keys[old].1 as usize;
-        self.tri = (0..n).map(|i| self.tri[order(i)]).collect();
-        self.nbr = (0..n).map(|i| self.nbr[order(i)].map(map)).collect();
-        self.mirror = (0..n).map(|i| self.mirror[order(i)]).collect();
-        for f in &mut self.vertex_fan {
-            f.0 = map(f.0);
-        }
-        for t in &mut self.face_map {
-            *t = map(*t);
-        }
-        self.first = map(self.first);
+        keys.into_iter().map(|(_, t)| t).collect()
     }
 
     /// Builds [`Mesh::cells`] and [`Mesh::coords`] from the triangle arrays;
     /// returns each vertex's index in `coords`.
     fn pack(&mut self) -> Vec<u32> {
-        // Coordinates in the order the triangles first use them.
+        self.cell_tri = self.hilbert_order();
+        self.tri_cell = vec![NONE; self.tri.len()];
+        for (c, &t) in self.cell_tri.iter().enumerate() {
+            self.tri_cell[t as usize] = c as u32;
+        }
+        // Coordinates in the order the cells first use them.
         let mut at = vec![NONE; self.points.len()];
         self.coords = Vec::with_capacity(self.points.len());
-        for v in &self.tri {
-            for &i in v {
+        for &t in &self.cell_tri {
+            for &i in &self.tri[t as usize] {
                 if at[i as usize] == NONE {
                     at[i as usize] = self.coords.len() as u32;
                     self.coords.push(self.points[i as usize]);
@@ -421,7 +419,8 @@ impl Mesh {
             }
         }
         self.cells = Vec::with_capacity(self.tri.len());
-        for t in 0..self.tri.len() {
+        for &t in &self.cell_tri {
+            let t = t as usize;
             let v = self.tri[t];
             let (mut adj, mut opp) = ([0; 3], [0; 3]);
             for k in 0..3 {
@@ -433,7 +432,7 @@ impl Mesh {
                     }
                     u => {
                         let m = self.mirror[t][k];
-                        adj[k] = (u << 2) | u32::from(m);
+                        adj[k] = (self.tri_cell[u as usize] << 2) | u32::from(m);
                         opp[k] = at[self.tri[u as usize][m as usize] as usize];
                     }
                 }
@@ -452,13 +451,6 @@ impl Mesh {
     pub(crate) fn edge_end(&self, e: EdgeId) -> u32 {
         let (s, end) = (self.ring_start[e.ring as usize], self.ring_start[e.ring as usize + 1]);
         if s + e.index + 1 == end { s } else { s + e.index + 1 }
-    }
-
-    /// The free-space triangle spade lists first (before [`Mesh::renumber`]): a fixed
-    /// triangle for callers that want "some triangle" and must get the same one as before
-    /// the renumbering.
-    pub(crate) fn first_triangle(&self) -> u32 {
-        self.first
     }
 
     /// Vertex coordinates.
@@ -510,7 +502,7 @@ impl Mesh {
     /// edge or runs long.
     fn walk_to(&self, p: Point) -> Option<u32> {
         let start = self.grid.start(p)?;
-        let (mut t, mut c) = (start.t, start.c.map(|i| self.coords[i as usize]));
+        let (mut t, mut c) = (start.cell, start.c.map(|i| self.coords[i as usize]));
         for step in 0..self.grid.max_steps {
             let o = [
                 orient_sign(c[1], c[2], p),
@@ -518,7 +510,7 @@ impl Mesh {
                 orient_sign(c[0], c[1], p),
             ];
             if o == [1, 1, 1] {
-                return Some(t);
+                return Some(self.cell_tri[t as usize]);
             }
             // Leave through a side with p strictly beyond it (starting the search at a side
             // that changes with the step, so the walk cannot circle), never through a wall.
@@ -616,6 +608,53 @@ mod tests {
             assert_eq!(tri[i as usize], v as u32);
             assert_eq!(m.points[tri[(i as usize + 1) % 3] as usize], next);
         }
+    }
+
+    #[test]
+    fn packed_cells_hilbert_order_and_grid_walk() {
+        let d = Domain::new(ring(0.0, 0.0, 10.0), vec![ring(2.0, 2.0, 2.0), ring(6.0, 5.0, 3.0)])
+            .unwrap();
+        let m = Mesh::new(&d).unwrap();
+        // The cells say what the arrays say.
+        for t in 0..m.triangles() {
+            let cell = m.cells[m.tri_cell[t] as usize];
+            assert_eq!(m.cell_tri[m.tri_cell[t] as usize] as usize, t);
+            for k in 0..3 {
+                let (a, o) = (cell.adj[k], cell.opp[k]);
+                match m.nbr[t][k] {
+                    NONE => {
+                        let e = EdgeId { ring: a & !WALL, index: o };
+                        assert_ne!(a & WALL, 0);
+                        assert_eq!(e, m.edge_of(m.tri[t][(k + 1) % 3]));
+                        assert_eq!(m.edge_start(e), m.tri[t][(k + 1) % 3]);
+                        assert_eq!(m.edge_end(e), m.tri[t][(k + 2) % 3]);
+                    }
+                    u => {
+                        let j = m.mirror[t][k];
+                        assert_eq!(a, (m.tri_cell[u as usize] << 2) | u32::from(j));
+                        let far = m.tri[u as usize][j as usize];
+                        assert_eq!(m.coords[o as usize], m.points[far as usize]);
+                    }
+                }
+            }
+        }
+        for (v, &i) in m.coord_at.iter().enumerate() {
+            assert_eq!(m.coords[i as usize], m.points[v]);
+        }
+        // The cells' order is deterministic (and a permutation, checked above).
+        let again = Mesh::new(&d).unwrap();
+        assert_eq!((&m.tri, &m.cell_tri, &m.coords), (&again.tri, &again.cell_tri, &again.coords));
+        // The grid walk locates exactly as spade does, on vertices, edges, in holes and
+        // outside; and it answers most interior points itself.
+        let mut walked = 0;
+        for i in -2..=42 {
+            for j in -2..=42 {
+                let p = [f64::from(i) * 0.25, f64::from(j) * 0.25 + 0.01 * f64::from(i % 3)];
+                assert_eq!(m.locate(p), m.locate_spade(p), "at {p:?}");
+                walked += usize::from(m.walk_to(p).is_some());
+            }
+        }
+        assert!(walked > 1000, "{walked}");
     }
 
     #[test]

@@ -240,7 +240,7 @@ fn roomiest_centroid(cspace: &Visibility, domain: &Domain) -> Point {
 /// The centroid of the first triangle of a preprocessed domain.
 fn interior_point(vis: &Visibility) -> Point {
     let m = vis.mesh();
-    let t = m.tri.get(m.first_triangle() as usize).copied().unwrap_or([0, 0, 0]);
+    let t = m.tri.first().copied().unwrap_or([0, 0, 0]);
     let p = t.map(|i| m.points()[i as usize]);
     [(p[0][0] + p[1][0] + p[2][0]) / 3.0, (p[0][1] + p[1][1] + p[2][1]) / 3.0]
 }

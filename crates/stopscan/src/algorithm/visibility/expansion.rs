@@ -27,18 +27,21 @@ pub struct Scratch {
     stack: Vec<Cone>,
     starts: Vec<Cone>,
     pieces: Vec<Piece>,
+    /// The vertices met along a gap ([`gap`]).
+    stops: Vec<(Point, Option<u32>)>,
 }
 
 /// A triangle side `er → el` (counter-clockwise in the triangle being left), entered with the
-/// view cone from the right bound `r` to the left bound `l` (input vertices). It carries what
-/// its step needs: the coordinates, and the side's entry of the triangle's [`Cell`] (what lies
-/// across, and the far corner there), read when the cone was made.
+/// view cone from the right bound `r` to the left bound `l` (input vertices, all four as
+/// indices into [`Mesh::coords`]). It carries the side's entry of the triangle's [`Cell`]
+/// (what lies across, and the far corner there), read when the cone was made, so a step's
+/// two reads from memory (the far corner, the next cell) are both addressed by the cone.
 #[derive(Debug, Clone, Copy)]
 struct Cone {
-    r: Point,
-    l: Point,
-    er: Point,
-    el: Point,
+    r: u32,
+    l: u32,
+    er: u32,
+    el: u32,
     across: u32,
     opp: u32,
 }
@@ -74,8 +77,9 @@ pub fn expand(
     let starts = &mut scratch.starts;
     let push_start = |t: u32, k: u8, starts: &mut Vec<Cone>| {
         let (v, k) = (tri[t as usize], k as usize);
-        let (er, el) = (pts[v[(k + 1) % 3] as usize], pts[v[(k + 2) % 3] as usize]);
-        let cell = &mesh.cells[t as usize];
+        let (er, el) =
+            (mesh.coord_at[v[(k + 1) % 3] as usize], mesh.coord_at[v[(k + 2) % 3] as usize]);
+        let cell = &mesh.cells[mesh.tri_cell[t as usize] as usize];
         starts.push(Cone { r: er, l: el, er, el, across: cell.adj[k], opp: cell.opp[k] });
     };
     // Pieces along the domain edges through q itself (boundary queries), before/after.
@@ -149,7 +153,7 @@ pub fn expand(
     if let Some(p) = tail {
         scratch.pieces.push(p);
     }
-    assemble(mesh, q, &scratch.pieces, scratch.collinear, out);
+    assemble(mesh, q, &scratch.pieces, scratch.collinear, &mut scratch.stops, out);
     Ok(())
 }
 
@@ -157,19 +161,20 @@ pub fn expand(
 /// whether a vertex lay exactly on a bounding ray.
 ///
 /// A step reads the far corner's coordinates and the next triangle's cell, both addressed by
-/// the cone itself. The bounds travel as coordinates, and a bound is the edge's own vertex
-/// exactly when their coordinates are equal (a valid domain has no two vertices at one point).
+/// the cone itself (the bounds' coordinates were read a step or more before: cached).
 #[inline]
 fn run(mesh: &Mesh, q: Point, start: Cone, stack: &mut Vec<Cone>, pieces: &mut Vec<Piece>) -> bool {
     let mut collinear = false;
     let (cells, coords) = (&mesh.cells, &mesh.coords);
     stack.push(start);
-    while let Some(Cone { r: pr, l: pl, er: per, el: pel, across, opp }) = stack.pop() {
+    while let Some(Cone { r, l, er, el, across, opp }) = stack.pop() {
+        let (pr, pl) = (coords[r as usize], coords[l as usize]);
         if across & WALL != 0 {
             let edge = EdgeId { ring: across & !WALL, index: opp };
-            let full_r = pr == per || orient_sign(q, pr, per) == 0;
-            let full_l = pl == pel || orient_sign(q, pl, pel) == 0;
-            collinear |= (pr != per && full_r) || (pl != pel && full_l);
+            let (per, pel) = (coords[er as usize], coords[el as usize]);
+            let full_r = r == er || orient_sign(q, pr, per) == 0;
+            let full_l = l == el || orient_sign(q, pl, pel) == 0;
+            collinear |= (r != er && full_r) || (l != el && full_l);
             let from = if full_r { per } else { ray_hit(q, pr, per, pel) };
             let to = if full_l { pel } else { ray_hit(q, pl, per, pel) };
             let full = full_r && full_l;
@@ -181,39 +186,27 @@ fn run(mesh: &Mesh, q: Point, start: Cone, stack: &mut Vec<Cone>, pieces: &mut V
         let cell = &cells[n];
         // The sub-sides (e_r, c) and (c, e_l): sides m + 1 and m + 2 of the next triangle.
         let (sub_r, sub_l) = ((m + 1) % 3, (m + 2) % 3);
-        let right = |l: Point| Cone {
-            r: pr,
-            l,
-            er: per,
-            el: pc,
-            across: cell.adj[sub_r],
-            opp: cell.opp[sub_r],
-        };
-        let left = |r: Point| Cone {
-            r,
-            l: pl,
-            er: pc,
-            el: pel,
-            across: cell.adj[sub_l],
-            opp: cell.opp[sub_l],
-        };
+        let right =
+            |l: u32| Cone { r, l, er, el: opp, across: cell.adj[sub_r], opp: cell.opp[sub_r] };
+        let left =
+            |r: u32| Cone { r, l, er: opp, el, across: cell.adj[sub_l], opp: cell.opp[sub_l] };
         let sr = orient_sign(q, pr, pc);
         if sr == 0 {
             collinear = true;
         }
         if sr <= 0 {
             // c on or right of R: only the left sub-side (c, e_l) is seen.
-            stack.push(left(pr));
+            stack.push(left(r));
             continue;
         }
         let sl = orient_sign(q, pl, pc);
         collinear |= sl == 0;
         if sl >= 0 {
             // c on or left of L: only the right sub-side (e_r, c) is seen.
-            stack.push(right(pl));
+            stack.push(right(l));
         } else {
-            stack.push(left(pc));
-            stack.push(right(pc));
+            stack.push(left(opp));
+            stack.push(right(opp));
         }
     }
     collinear
@@ -229,7 +222,14 @@ fn ray_hit(q: Point, through: Point, a: Point, b: Point) -> Point {
     [q[0] + t * dx, q[1] + t * dy]
 }
 
-fn assemble(mesh: &Mesh, q: Point, pieces: &[Piece], collinear: bool, out: &mut VisibilityRegion) {
+fn assemble(
+    mesh: &Mesh,
+    q: Point,
+    pieces: &[Piece],
+    collinear: bool,
+    stops: &mut Vec<(Point, Option<u32>)>,
+    out: &mut VisibilityRegion,
+) {
     let n = pieces.len();
     for (i, p) in pieces.iter().enumerate() {
         let edge = p.edge;
@@ -253,7 +253,7 @@ fn assemble(mesh: &Mesh, q: Point, pieces: &[Piece], collinear: bool, out: &mut 
             if collinear
                 || va.zip(vb).is_some_and(|(v, w)| mesh.ring_next(w) == v || mesh.ring_next(v) == w)
             {
-                gap(mesh, q, (p.to, va), (np.from, vb), out);
+                gap(mesh, q, (p.to, va), (np.from, vb), stops, out);
             } else {
                 window(q, p.to, np.from, out);
             }
@@ -276,13 +276,15 @@ fn gap(
     q: Point,
     (a, va): (Point, Option<u32>),
     (b, vb): (Point, Option<u32>),
+    stops: &mut Vec<(Point, Option<u32>)>,
     out: &mut VisibilityRegion,
 ) {
     let pts = mesh.points();
     // Walk from an end that is a vertex: a constructed end may round to just outside.
     let backward = va.is_none() && vb.is_some();
     let (s, e) = if backward { ((b, vb), (a, va)) } else { ((a, va), (b, vb)) };
-    let mut stops: Vec<(Point, Option<u32>)> = vec![s];
+    stops.clear();
+    stops.push(s);
     walk(mesh, s.0, e.0, |v| {
         if pts[v as usize] != e.0 {
             stops.push((pts[v as usize], Some(v)));
