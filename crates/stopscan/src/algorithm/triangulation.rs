@@ -484,8 +484,8 @@ impl Mesh {
     /// Locates a point exactly.
     ///
     /// A point strictly inside a triangle is found by a short walk from the triangle the
-    /// [`Grid`] names for its cell; on an edge or a vertex, or when the walk meets a domain
-    /// edge, spade's hierarchy locates it (the same answers, spade picks which triangle names
+    /// mesh's uniform grid names for its cell; on an edge or a vertex, or when the walk meets a
+    /// domain edge, spade's hierarchy locates it (the same answers, spade picks which triangle names
     /// an inner edge).
     pub fn locate(&self, p: Point) -> MeshLocation {
         if !(p[0].is_finite() && p[1].is_finite()) {
