@@ -129,6 +129,23 @@ fn explore_and_generate() {
         "header + 2 environments × every strategy:\n{csv_text}"
     );
     assert!(csv_text.lines().next().unwrap().contains("scans_upper"));
+    // A robot in a folder sweep is refused, not silently ignored.
+    for robot in [["--robot-radius", "0.2"], ["--min-window", "0.5"]] {
+        let r = stopscan(&[
+            "explore",
+            "--env",
+            dir.to_str().unwrap(),
+            "--strategy",
+            "all",
+            robot[0],
+            robot[1],
+            "--out",
+            csv_path.to_str().unwrap(),
+        ]);
+        assert!(!r.status.success());
+        let e = String::from_utf8_lossy(&r.stderr);
+        assert!(e.contains("a folder sweep runs a point robot") && e.contains(robot[0]), "{e}");
+    }
     let b = json(&["bench", "explore", "--n", "20"]);
     assert_eq!(b["runs_failing_checks"], 0, "{b}");
     assert_eq!(b["n"], 20);

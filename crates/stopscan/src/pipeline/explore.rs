@@ -195,6 +195,12 @@ pub enum ExploreError {
     /// A sweep's folder holds no environment file.
     #[error("{} holds no environment files (.geojson, .wkt, .pol, .yaml, .txt)", .0.display())]
     NoFiles(PathBuf),
+    /// A folder sweep was given a robot (a footprint or a window rule): sweeps run the paper's
+    /// point robot with an ideal sensor only.
+    #[error(
+        "a folder sweep runs a point robot with an ideal sensor; {0} applies to one environment (explore --env FILE) or to bench floors --data DIR"
+    )]
+    RobotInSweep(&'static str),
 }
 
 /// The range is a finite positive distance, and `range_limited`, named explicitly, has one

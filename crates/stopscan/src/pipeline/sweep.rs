@@ -86,7 +86,8 @@ fn file_name(path: &Path) -> String {
 /// (or `all`), in parallel; rows come back in file order, strategies in registry order,
 /// whatever the thread count. Each file's lower bounds are computed once, within
 /// `options.limits.bounds_seconds`; `options.seed` and `options.trace` are not used; ROS maps are
-/// read with `options.simplify`.
+/// read with `options.simplify`. A robot (a footprint or a window rule) is refused:
+/// [`ExploreError::RobotInSweep`].
 ///
 /// # Errors
 /// [`ExploreError`] for a folder that cannot be read or holds no environment file, an unknown
@@ -104,6 +105,16 @@ pub fn sweep_dir(
     }
     check_budgets(&options.limits)?;
     check_simplify(options.simplify)?;
+    // The rows are a point robot's (coverage of the whole free space, the paper's bounds):
+    // a robot's options would be silently ignored, so they are refused.
+    if !options.footprint.is_point() {
+        return Err(ExploreError::RobotInSweep("a footprint (--robot-radius, --footprint)"));
+    }
+    if options.beams.is_some() || options.min_feature > 0.0 || options.min_window.is_some() {
+        return Err(ExploreError::RobotInSweep(
+            "a window rule (--beams, --min-feature, --min-window)",
+        ));
+    }
     let map = RosMapOptions { simplify: options.simplify, ..RosMapOptions::default() };
     // Indices into the inputs for the files that loaded, their errors for the others.
     let mut inputs: Vec<SweepInput> = Vec::new();

@@ -126,8 +126,10 @@ impl<'a> Approach<'a> {
             .collect();
         let first_goal = 1 + corners.len();
         let open: Vec<bool> = goals.iter().map(|&g| self.clear_point(g)).collect();
-        // Lengths in nanometres of the coordinates' unit: integer costs for Dijkstra.
-        let cost = |a: Point, b: Point| ((a[0] - b[0]).hypot(a[1] - b[1]) * 1e9).round() as u64;
+        // Integer costs for Dijkstra: lengths in units of 1e-12 of the region's magnitude
+        // (every length fits in a u64, whatever the coordinates' scale).
+        let unit = 1e12 / crate::kernel::magnitude(self.polygon).max(f64::MIN_POSITIVE);
+        let cost = |a: Point, b: Point| ((a[0] - b[0]).hypot(a[1] - b[1]) * unit).round() as u64;
         let reached = pathfinding::directed::dijkstra::dijkstra_all(&0usize, |&u| {
             let a = nodes[u];
             let mut next = Vec::new();
