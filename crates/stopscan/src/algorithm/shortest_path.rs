@@ -130,17 +130,29 @@ pub struct PathPlanner<'a> {
     adj: Vec<Vec<(u32, f64)>>,
 }
 
-#[derive(PartialEq)]
-struct Entry(f64, u32);
-impl Eq for Entry {}
-impl PartialOrd for Entry {
+/// A `BinaryHeap` entry that pops the least cost first, ties to the least key; costs are
+/// ordered totally (`f64::total_cmp`), and equality agrees with the order.
+#[derive(Debug, Clone, Copy)]
+pub(crate) struct MinFirst<K>(pub(crate) f64, pub(crate) K);
+
+impl<K: Ord> PartialEq for MinFirst<K> {
+    fn eq(&self, other: &Self) -> bool {
+        self.cmp(other) == Ordering::Equal
+    }
+}
+
+impl<K: Ord> Eq for MinFirst<K> {}
+
+impl<K: Ord> PartialOrd for MinFirst<K> {
     fn partial_cmp(&self, other: &Self) -> Option<Ordering> {
         Some(self.cmp(other))
     }
 }
-impl Ord for Entry {
+
+impl<K: Ord> Ord for MinFirst<K> {
+    /// Reversed, so that the max-heap pops the cheapest.
     fn cmp(&self, other: &Self) -> Ordering {
-        other.0.total_cmp(&self.0).then(other.1.cmp(&self.1))
+        other.0.total_cmp(&self.0).then_with(|| other.1.cmp(&self.1))
     }
 }
 
@@ -209,18 +221,18 @@ impl<'a> PathPlanner<'a> {
             for (i, u) in self.nodes.iter().enumerate() {
                 if segment_is_free(mesh, s, u.1) {
                     g[i] = dist(s, u.1);
-                    heap.push(Entry(g[i], i as u32));
+                    heap.push(MinFirst(g[i], i as u32));
                 }
             }
         }
-        while let Some(Entry(d, k)) = heap.pop() {
+        while let Some(MinFirst(d, k)) = heap.pop() {
             if d > g[k as usize] {
                 continue;
             }
             for &(m, w) in &self.adj[k as usize] {
                 if d + w < g[m as usize] {
                     g[m as usize] = d + w;
-                    heap.push(Entry(d + w, m));
+                    heap.push(MinFirst(d + w, m));
                 }
             }
         }
@@ -291,18 +303,18 @@ impl<'a> PathPlanner<'a> {
         let mut prev = vec![u32::MAX; n + 2];
         let mut heap = BinaryHeap::new();
         g[start as usize] = 0.0;
-        heap.push(Entry(dist(s, t), start));
-        while let Some(Entry(_, k)) = heap.pop() {
+        heap.push(MinFirst(dist(s, t), start));
+        while let Some(MinFirst(_, k)) = heap.pop() {
             if k == goal {
                 break;
             }
             let here = g[k as usize];
-            let mut relax = |m: u32, w: f64, heap: &mut BinaryHeap<Entry>| {
+            let mut relax = |m: u32, w: f64, heap: &mut BinaryHeap<MinFirst<u32>>| {
                 let c = here + w;
                 if c < g[m as usize] {
                     g[m as usize] = c;
                     prev[m as usize] = k;
-                    heap.push(Entry(c + dist(pos(m), t), m));
+                    heap.push(MinFirst(c + dist(pos(m), t), m));
                 }
             };
             if k == start {

@@ -40,9 +40,9 @@
 //! it replaces and the grid cells under its triangle, both about the length of the new edge
 //! over the cell size.
 
-use std::cmp::Ordering;
 use std::collections::BinaryHeap;
 
+use crate::algorithm::shortest_path::MinFirst;
 use crate::geometry::segment_distance;
 use crate::kernel::{Point, on_segment, orient_sign};
 
@@ -69,14 +69,15 @@ pub(super) fn simplify(
     let mut heap = BinaryHeap::with_capacity(n);
     for v in 0..n {
         if let Some(cost) = s.cost(v, tol) {
-            heap.push(Entry { cost, v: v as u32, stamp: 0 });
+            heap.push(MinFirst(cost, (v as u32, 0)));
         }
     }
     // waiting[u]: vertices whose removal u blocked, retried when u goes.
     let mut waiting: Vec<Vec<u32>> = vec![Vec::new(); n];
-    while let Some(e) = heap.pop() {
-        let v = e.v as usize;
-        if !s.alive[v] || e.stamp != s.stamp[v] || s.len[s.ring[v] as usize] <= 3 {
+    // Candidate removals, cheapest first, then the lowest vertex (and stamp).
+    while let Some(MinFirst(_, (v, stamp))) = heap.pop() {
+        let v = v as usize;
+        if !s.alive[v] || stamp != s.stamp[v] || s.len[s.ring[v] as usize] <= 3 {
             continue;
         }
         match s.blocker(v) {
@@ -94,45 +95,12 @@ pub(super) fn simplify(
             if s.alive[w] {
                 s.stamp[w] += 1;
                 if let Some(cost) = s.cost(w, tol) {
-                    heap.push(Entry { cost, v: w as u32, stamp: s.stamp[w] });
+                    heap.push(MinFirst(cost, (w as u32, s.stamp[w])));
                 }
             }
         }
     }
     s.rings().iter().map(|r| in_metres(r, resolution)).collect()
-}
-
-/// A candidate removal in the heap: cheapest first, then the lowest vertex.
-#[derive(Debug, Clone, Copy)]
-struct Entry {
-    cost: f64,
-    v: u32,
-    stamp: u32,
-}
-
-impl PartialEq for Entry {
-    fn eq(&self, other: &Self) -> bool {
-        self.cmp(other) == Ordering::Equal
-    }
-}
-
-impl Eq for Entry {}
-
-impl PartialOrd for Entry {
-    fn partial_cmp(&self, other: &Self) -> Option<Ordering> {
-        Some(self.cmp(other))
-    }
-}
-
-impl Ord for Entry {
-    /// Reversed, so that the max-heap pops the cheapest.
-    fn cmp(&self, other: &Self) -> Ordering {
-        other
-            .cost
-            .total_cmp(&self.cost)
-            .then(other.v.cmp(&self.v))
-            .then(other.stamp.cmp(&self.stamp))
-    }
 }
 
 /// What keeps a vertex from being removed.

@@ -10,7 +10,7 @@
 //! bounded number of them (those nearest the straight line the robot cannot drive), searched
 //! with Dijkstra's algorithm (`pathfinding`).
 
-use crate::geometry::segments_distance;
+use super::known::keeps_clear;
 use crate::kernel::{Point, RingSide, ring_side};
 
 /// How many reflex vertices of the region (those nearest the blocked straight line) lend
@@ -25,9 +25,6 @@ const STEPS: [f64; 2] = [1.25, 2.5];
 pub(super) struct Approach<'a> {
     polygon: &'a [Point],
     c: f64,
-    /// Each edge's bounding box grown by `c`: an edge whose box a segment's box misses is
-    /// farther than `c` from it.
-    boxes: Vec<[f64; 4]>,
 }
 
 /// A path found: the waypoints strictly between the start and the goal, and the goal's index
@@ -42,29 +39,13 @@ impl<'a> Approach<'a> {
     /// Paths inside `polygon` (a view's region, counter-clockwise) keeping `c > 0` from its
     /// boundary.
     pub(super) fn new(polygon: &'a [Point], c: f64) -> Self {
-        let n = polygon.len();
-        let boxes = (0..n)
-            .map(|i| {
-                let (p, q) = (polygon[i], polygon[(i + 1) % n]);
-                [p[0].min(q[0]) - c, p[1].min(q[1]) - c, p[0].max(q[0]) + c, p[1].max(q[1]) + c]
-            })
-            .collect();
-        Self { polygon, c, boxes }
+        Self { polygon, c }
     }
 
-    /// Whether the straight move `a b` keeps the clearance from every edge (floating point,
-    /// like the clearance itself).
+    /// Whether the straight move `a b` keeps the clearance from every edge
+    /// ([`keeps_clear`]).
     pub(super) fn clear(&self, a: Point, b: Point) -> bool {
-        let (x0, y0, x1, y1) = (a[0].min(b[0]), a[1].min(b[1]), a[0].max(b[0]), a[1].max(b[1]));
-        let n = self.polygon.len();
-        (0..n).all(|i| {
-            let bx = &self.boxes[i];
-            bx[0] > x1
-                || bx[2] < x0
-                || bx[1] > y1
-                || bx[3] < y0
-                || segments_distance(a, b, self.polygon[i], self.polygon[(i + 1) % n]) >= self.c
-        })
+        keeps_clear(self.polygon, a, b, self.c)
     }
 
     /// Whether `p` lies inside the region with the clearance around it.

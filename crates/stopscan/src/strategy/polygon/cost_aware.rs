@@ -134,8 +134,7 @@ fn wedge_beyond(z: Point, p: Point, q: Point, depth: f64) -> f64 {
         return if depth.is_finite() { 0.0 } else { 0.5 * ra.max(rb) * ra.max(rb) };
     }
     let cross = a[0] * b[1] - a[1] * b[0];
-    let dot = a[0] * b[0] + a[1] * b[1];
-    let theta = cross.abs().atan2(dot);
+    let theta = known::subtended(z, [p, q]);
     (0.5 * theta * depth * depth - 0.5 * cross.abs()).max(0.0)
 }
 

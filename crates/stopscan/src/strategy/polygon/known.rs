@@ -69,8 +69,8 @@ pub(super) struct Target {
     /// the footprint's clearance (empty for a straight move).
     #[serde(default)]
     pub(super) via: Vec<Point>,
-    pub(super) view: usize,
-    pub(super) window: usize,
+    view: usize,
+    window: usize,
     gap: [f64; 2],
     /// Placed at a point of the window other than the gap's middle (a wall junction), from
     /// where the scan may see only part of the gap: it is not marked handled, but the window
@@ -127,7 +127,8 @@ pub(super) struct Known {
 /// Windows closed without a visit, and why.
 #[derive(Debug, Clone, Copy, Default, PartialEq, Serialize, Deserialize)]
 pub struct Skipped {
-    /// Windows shorter than the sensor rule's minimum ([`Sensor::min_window_at`]).
+    /// Windows, and parts of windows left open, shorter than the sensor rule's minimum
+    /// ([`Sensor::min_window_at`]).
     pub below_rule: usize,
     /// Their total length, metres.
     pub below_rule_length: f64,
@@ -161,7 +162,18 @@ impl View {
 /// known). Floating point, like the clearance it checks.
 pub(super) fn keeps_clear(polygon: &[Point], at: Point, z: Point, c: f64) -> bool {
     let n = polygon.len();
-    (0..n).all(|i| segments_distance(at, z, polygon[i], polygon[(i + 1) % n]) >= c)
+    let (x0, y0) = (at[0].min(z[0]) - c, at[1].min(z[1]) - c);
+    let (x1, y1) = (at[0].max(z[0]) + c, at[1].max(z[1]) + c);
+    (0..n).all(|i| {
+        let (p, q) = (polygon[i], polygon[(i + 1) % n]);
+        // An edge whose box lies more than `c` beyond the move's box along an axis is farther
+        // than `c` from it: the exact distance is needed only for the others.
+        p[0].max(q[0]) < x0
+            || p[0].min(q[0]) > x1
+            || p[1].max(q[1]) < y0
+            || p[1].min(q[1]) > y1
+            || segments_distance(at, z, p, q) >= c
+    })
 }
 
 /// Whether the straight move from `at` (the viewpoint `polygon` was seen from) to `z` stays
@@ -215,14 +227,12 @@ impl Known {
                     let mut covered = Vec::new();
                     // The sensor rule closes short windows (not range frontiers: a range's
                     // arc comes as many short chords).
-                    if matches!(b, BoundaryPiece::Window { .. }) && !sensor.excludes_nothing() {
-                        let d = |p: Point| (p[0] - at[0]).hypot(p[1] - at[1]);
-                        let len = (to[0] - from[0]).hypot(to[1] - from[1]);
-                        if len < sensor.min_window_at(d(from).min(d(to))) {
-                            skipped.below_rule += 1;
-                            skipped.below_rule_length += len;
-                            covered.push([0.0, 1.0]);
-                        }
+                    if matches!(b, BoundaryPiece::Window { .. })
+                        && let Some(len) = below_rule(&sensor, at, from, to)
+                    {
+                        skipped.below_rule += 1;
+                        skipped.below_rule_length += len;
+                        covered.push([0.0, 1.0]);
                     }
                     let range_frontier = matches!(b, BoundaryPiece::Frontier { .. });
                     Some(Window {
@@ -304,20 +314,17 @@ impl Known {
             // The sensor rule applies to what is left open of a window as to a whole window
             // (not to range frontiers, whose arc comes as many short chords): an open part
             // shorter than the sensor resolves from the view is not worth a trip.
-            if !self.sensor.excludes_nothing() && !w.range_frontier {
-                let at = self.views[view].at;
-                let p = [from[0] + gap[0] * dx, from[1] + gap[0] * dy];
-                let q = [from[0] + gap[1] * dx, from[1] + gap[1] * dy];
-                let d = (p[0] - at[0]).hypot(p[1] - at[1]).min((q[0] - at[0]).hypot(q[1] - at[1]));
-                let len = (q[0] - p[0]).hypot(q[1] - p[1]);
-                if len < self.sensor.min_window_at(d) {
-                    self.skipped.below_rule += 1;
-                    self.skipped.below_rule_length += len;
-                    let w = &mut self.views[view].windows[k];
-                    w.covered.push(gap);
-                    cover::merge(&mut w.covered);
-                    continue;
-                }
+            let p = [from[0] + gap[0] * dx, from[1] + gap[0] * dy];
+            let q = [from[0] + gap[1] * dx, from[1] + gap[1] * dy];
+            if !w.range_frontier
+                && let Some(len) = below_rule(&self.sensor, self.views[view].at, p, q)
+            {
+                self.skipped.below_rule += 1;
+                self.skipped.below_rule_length += len;
+                let w = &mut self.views[view].windows[k];
+                w.covered.push(gap);
+                cover::merge(&mut w.covered);
+                continue;
             }
             let tm = match self.placement {
                 Placement::Middle => 0.5 * (gap[0] + gap[1]),
@@ -617,12 +624,24 @@ impl Known {
     }
 }
 
+/// The length of the window segment `p q` seen from `at` if the sensor's rule finds it too
+/// short to be worth a trip ([`Sensor::min_window_at`] its near end's distance), `None` if it
+/// is worth one.
+fn below_rule(sensor: &Sensor, at: Point, p: Point, q: Point) -> Option<f64> {
+    if sensor.excludes_nothing() {
+        return None;
+    }
+    let d = |x: Point| (x[0] - at[0]).hypot(x[1] - at[1]);
+    let len = (q[0] - p[0]).hypot(q[1] - p[1]);
+    (len < sensor.min_window_at(d(p).min(d(q)))).then_some(len)
+}
+
 /// The least angle (radians) under which a corner must see a window part to be worth a scan
 /// that looks through it ([`Known::clear_point`]'s last resort): 15°.
 const MIN_LOOK_ANGLE: f64 = std::f64::consts::PI / 12.0;
 
 /// The angle (radians, in [0, π]) the segment `g` subtends from `z`.
-fn subtended(z: Point, g: [Point; 2]) -> f64 {
+pub(super) fn subtended(z: Point, g: [Point; 2]) -> f64 {
     let (a, b) = ([g[0][0] - z[0], g[0][1] - z[1]], [g[1][0] - z[0], g[1][1] - z[1]]);
     (a[0] * b[1] - a[1] * b[0]).abs().atan2(a[0] * b[0] + a[1] * b[1])
 }
