@@ -94,8 +94,9 @@ impl CostAware {
         // (travel and scan time) goes first, at its candidate with the most area per second.
         let mut best: Option<(f64, f64, Target)> = None;
         for (v, targets) in &open {
-            let (pts, len) = self.known.route(cur, *v);
+            let route = self.known.route(cur, *v);
             for t in targets {
+                let (steps, len) = self.known.trip_to(cur, t, &route);
                 // The window's own viewpoint (reached straight or bending around corners),
                 // then points stepped back from it that are reached straight.
                 let mut zs = vec![t.clone()];
@@ -106,7 +107,7 @@ impl CostAware {
                 for z in zs {
                     let gain = self.gain(z.at, &gaps).max(f64::MIN_POSITIVE);
                     let dist = len + self.known.approach_length(&z);
-                    let moves = pts.len() + z.via.len() + 1;
+                    let moves = steps + z.via.len() + 1;
                     let secs = cost.move_time * moves as f64 + dist / cost.speed + cost.scan_time;
                     let rate = gain / secs.max(f64::MIN_POSITIVE);
                     if part.as_ref().is_none_or(|b| rate > b.1) {

@@ -89,12 +89,17 @@ impl DepthFirst {
         loop {
             let Some(&top) = self.stack.last() else { return Action::Done };
             if let Some(t) = self.known.next_target(top) {
+                if t.base() != top {
+                    route.extend(self.known.route(top, t.base()).0);
+                }
                 return self.known.go(route, t);
             }
             self.stack.pop();
-            if !self.stack.is_empty() {
-                // The search path is the tree of moves: back the way the robot came.
-                self.known.retreat(top, &mut route);
+            if let Some(&next) = self.stack.last() {
+                // The search path is the tree of moves: back the way the robot came (to the
+                // view below on the stack, which is the parent unless the scan's trip started
+                // from another view, see `Target::base`).
+                route.extend(self.known.route(top, next).0);
             }
         }
     }

@@ -48,13 +48,14 @@ impl GreedyNbv {
             if self.known.views[v].explored {
                 continue;
             }
-            let (pts, len) = self.known.route(cur, v);
+            let route = self.known.route(cur, v);
             let mut any = false;
             for k in 0..self.known.views[v].windows_len() {
                 let Some((t, open)) = self.known.window_target(v, k) else { continue };
                 any = true;
+                let (steps, len) = self.known.trip_to(cur, &t, &route);
                 let dist = len + self.known.approach_length(&t);
-                let moves = pts.len() + t.via.len() + 1;
+                let moves = steps + t.via.len() + 1;
                 let secs = self.cost.move_time * moves as f64
                     + dist / self.cost.speed
                     + self.cost.scan_time;

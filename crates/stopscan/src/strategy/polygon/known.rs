@@ -72,6 +72,12 @@ pub(super) struct Target {
     view: usize,
     window: usize,
     gap: [f64; 2],
+    /// The view from whose viewpoint the robot drives to `at` (through `via`), when it is not
+    /// `view`: a part no viewpoint in `view`'s own region reaches with the footprint's
+    /// clearance (seen from a corridor through a door at a slant) may be reached inside a
+    /// later view's region that holds its near side.
+    #[serde(default)]
+    anchor: Option<usize>,
     /// Placed at a point of the window other than the gap's middle (a wall junction), from
     /// where the scan may see only part of the gap: it is not marked handled, but the window
     /// gets only gap-middle targets from then on.
@@ -84,6 +90,12 @@ impl Target {
     /// robot can drive to straight from its viewpoint).
     pub(super) fn moved_to(&self, z: Point) -> Self {
         Self { at: z, via: Vec::new(), ..self.clone() }
+    }
+
+    /// The view whose viewpoint the trip to the target starts from: the target's own view,
+    /// or its anchor.
+    pub(super) fn base(&self) -> usize {
+        self.anchor.unwrap_or(self.view)
     }
 }
 
@@ -209,8 +221,8 @@ impl Known {
     /// the new view's parent in the tree of moves); the target counts as handled.
     pub(super) fn add(&mut self, obs: &PolygonObservation) -> usize {
         let pending = self.pending.take();
-        // The view the scan's target belonged to: the target lies in its region.
-        let parent = pending.as_ref().map(|t| t.view);
+        // The view the trip to the target started from: the target lies in its region.
+        let parent = pending.as_ref().map(Target::base);
         if let Some(t) = pending.as_ref().filter(|t| !t.off_gap) {
             self.handled(t);
         }
@@ -341,12 +353,36 @@ impl Known {
                 view,
                 window: k,
                 gap,
+                anchor: None,
                 off_gap: false,
             };
             let c = self.clearance(view);
             if c > 0.0 {
                 if let Some((at, via)) = self.clear_point(view, from, to, gap, c) {
                     return Some((Target { at, via, ..target }, open));
+                }
+                // From the regions of other views that hold the part's near side, nearest
+                // viewpoint first (ties to the earlier view).
+                let m = [f64::midpoint(p[0], q[0]), f64::midpoint(p[1], q[1])];
+                let len = dx.hypot(dy);
+                let near: Vec<Point> = [1.5, 2.5, 4.0]
+                    .into_iter()
+                    .map(|f| [m[0] - f * c * dy / len, m[1] + f * c * dx / len])
+                    .collect();
+                let mut others: Vec<(f64, usize)> = (0..self.views.len())
+                    .filter(|&w| w != view && near.iter().any(|&z| self.inside(w, z)))
+                    .map(|w| {
+                        let a = self.views[w].at;
+                        ((a[0] - m[0]).hypot(a[1] - m[1]), w)
+                    })
+                    .collect();
+                others.sort_by(|x, y| x.0.total_cmp(&y.0).then(x.1.cmp(&y.1)));
+                let cw = |w: usize| self.clearance(w);
+                if let Some((w, (at, via))) = others
+                    .into_iter()
+                    .find_map(|(_, w)| self.clear_point(w, from, to, gap, cw(w)).map(|x| (w, x)))
+                {
+                    return Some((Target { at, via, anchor: Some(w), ..target }, open));
                 }
                 self.skipped.out_of_reach += 1;
                 self.handled(&target);
@@ -456,7 +492,7 @@ impl Known {
     /// from the view's viewpoint keeping its clearance: places from where one scan may look
     /// through several windows of the view at once.
     pub(super) fn stepped_back(&self, t: &Target, depths: &[f64]) -> Vec<Point> {
-        let v = &self.views[t.view];
+        let v = &self.views[t.base()];
         let [p, q] = self.gap_of(t);
         let (dx, dy) = (q[0] - p[0], q[1] - p[1]);
         let len = dx.hypot(dy);
@@ -464,7 +500,7 @@ impl Known {
             return Vec::new();
         }
         let n = [-dy / len, dx / len];
-        let c = self.clearance(t.view);
+        let c = self.clearance(t.base());
         depths
             .iter()
             .map(|&s| [t.at[0] + s * n[0], t.at[1] + s * n[1]])
@@ -539,7 +575,7 @@ impl Known {
             .map(|l| [point[0] + l * (dx + d * inward[0]), point[1] + l * (dy + d * inward[1])])
             .find(|&z| v.reaches(z) && (c == 0.0 || v.clear(z, c)));
         Some(match at {
-            Some(at) => Target { at, via: Vec::new(), off_gap: true, ..t },
+            Some(at) => Target { at, via: Vec::new(), anchor: None, off_gap: true, ..t },
             None => Target { off_gap: true, ..t },
         })
     }
@@ -556,11 +592,12 @@ impl Known {
     /// Plans a trip from view `from`'s viewpoint along the tree of moves to the view the
     /// target belongs to, then to the target, then a scan.
     pub(super) fn go_from(&mut self, from: usize, target: Target) -> Action<Point> {
-        let (waypoints, _) = self.route(from, target.view);
+        let (waypoints, _) = self.route(from, target.base());
         self.go(waypoints, target)
     }
 
-    /// Plans a trip: drive through `waypoints` (in order) to the target, then scan.
+    /// Plans a trip: drive through `waypoints` (in order, ending at the viewpoint of the
+    /// target's [`base`](Target::base)) to the target, then scan.
     pub(super) fn go(&mut self, mut waypoints: Vec<Point>, target: Target) -> Action<Point> {
         waypoints.extend_from_slice(&target.via);
         waypoints.push(target.at);
@@ -606,9 +643,25 @@ impl Known {
         (pts, len)
     }
 
+    /// The moves and length of the route from view `cur`'s viewpoint to that of target `t`'s
+    /// [`base`](Target::base), given the `route` from `cur` to the target's own view.
+    pub(super) fn trip_to(
+        &self,
+        cur: usize,
+        t: &Target,
+        route: &(Vec<Point>, f64),
+    ) -> (usize, f64) {
+        if t.base() == t.view {
+            (route.0.len(), route.1)
+        } else {
+            let (pts, len) = self.route(cur, t.base());
+            (pts.len(), len)
+        }
+    }
+
     /// Appends the waypoints of the move back from view `child`'s viewpoint to its parent's
     /// (the way the robot came, reversed).
-    pub(super) fn retreat(&self, child: usize, route: &mut Vec<Point>) {
+    fn retreat(&self, child: usize, route: &mut Vec<Point>) {
         let v = &self.views[child];
         route.extend(v.via.iter().rev());
         if let Some(p) = v.parent {
@@ -616,11 +669,12 @@ impl Known {
         }
     }
 
-    /// The length of the approach from a target's view's viewpoint to the target.
+    /// The length of the approach from the viewpoint of a target's [`base`](Target::base)
+    /// to the target.
     pub(super) fn approach_length(&self, t: &Target) -> f64 {
         let mut pts = t.via.clone();
         pts.push(t.at);
-        path_length(self.views[t.view].at, &pts)
+        path_length(self.views[t.base()].at, &pts)
     }
 }
 

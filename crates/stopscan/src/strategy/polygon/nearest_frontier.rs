@@ -36,7 +36,7 @@ impl NearestFrontier {
         let mut best: Option<(f64, Target)> = None;
         for v in 0..self.known.views.len() {
             if let Some(t) = self.known.next_target(v) {
-                let (_, len) = self.known.route(cur, v);
+                let (_, len) = self.known.route(cur, t.base());
                 let total = len + self.known.approach_length(&t);
                 if best.as_ref().is_none_or(|b| total < b.0) {
                     best = Some((total, t));
