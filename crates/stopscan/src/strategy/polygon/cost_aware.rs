@@ -122,7 +122,7 @@ impl CostAware {
             }
         }
         let Some((_, _, t)) = best else { return Action::Done };
-        self.known.go_from(cur, t)
+        self.known.go_shortcut(cur, t)
     }
 }
 

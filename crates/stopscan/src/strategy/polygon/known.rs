@@ -607,6 +607,52 @@ impl Known {
         self.next_move()
     }
 
+    /// Plans a trip from view `from`'s viewpoint to the target as [`go_from`](Self::go_from)
+    /// does, with the route's corners cut: from each waypoint the robot drives straight to
+    /// the farthest later one ([`SHORTCUT_LOOKAHEAD`] at most) that the straight move reaches
+    /// inside a single view's region, keeping the footprint's clearance from its boundary. So
+    /// every move still lies in space seen free around the robot.
+    pub(super) fn go_shortcut(&mut self, from: usize, target: Target) -> Action<Point> {
+        let (mut pts, _) = self.route(from, target.base());
+        pts.extend_from_slice(&target.via);
+        pts.push(target.at);
+        let mut out = Vec::with_capacity(pts.len());
+        let (mut cur, mut i) = (self.views[from].at, 0);
+        while i < pts.len() {
+            let last = (i + SHORTCUT_LOOKAHEAD).min(pts.len() - 1);
+            let j =
+                (i + 1..=last).rev().find(|&j| self.straight_in_a_view(cur, pts[j])).unwrap_or(i);
+            out.push(pts[j]);
+            cur = pts[j];
+            i = j + 1;
+        }
+        out.reverse();
+        self.route = out;
+        self.pending = Some(target);
+        self.next_move()
+    }
+
+    /// Whether the straight move from `a` to `b` lies inside the region of some view, `a`
+    /// inside it or its viewpoint, keeping the footprint's clearance from its boundary.
+    fn straight_in_a_view(&self, a: Point, b: Point) -> bool {
+        let within = |v: &View, p: Point| {
+            p[0] >= v.bounds[0][0]
+                && p[0] <= v.bounds[1][0]
+                && p[1] >= v.bounds[0][1]
+                && p[1] <= v.bounds[1][1]
+        };
+        self.views.iter().enumerate().any(|(w, v)| {
+            within(v, a)
+                && within(v, b)
+                && (v.at == a || ring_side(&v.polygon, a) == RingSide::Inside)
+                && reaches(&v.polygon, a, b)
+                && {
+                    let c = self.clearance(w);
+                    c == 0.0 || keeps_clear(&v.polygon, a, b, c)
+                }
+        })
+    }
+
     /// The next action of the planned trip: the next waypoint, or the scan at its end.
     pub(super) fn next_move(&mut self) -> Action<Point> {
         match self.route.pop() {
@@ -689,6 +735,9 @@ fn below_rule(sensor: &Sensor, at: Point, p: Point, q: Point) -> Option<f64> {
     let len = (q[0] - p[0]).hypot(q[1] - p[1]);
     (len < sensor.min_window_at(d(p).min(d(q)))).then_some(len)
 }
+
+/// How many waypoints ahead [`Known::go_shortcut`] looks for a straight move.
+const SHORTCUT_LOOKAHEAD: usize = 24;
 
 /// The least angle (radians) under which a corner must see a window part to be worth a scan
 /// that looks through it ([`Known::clear_point`]'s last resort): 15°.
