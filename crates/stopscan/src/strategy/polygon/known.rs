@@ -610,21 +610,33 @@ impl Known {
     /// Plans a trip from view `from`'s viewpoint to the target as [`go_from`](Self::go_from)
     /// does, with the route's corners cut: from each waypoint the robot drives straight to
     /// the farthest later one ([`SHORTCUT_LOOKAHEAD`] at most) that the straight move reaches
-    /// inside a single view's region, keeping the footprint's clearance from its boundary. So
-    /// every move still lies in space seen free around the robot.
+    /// inside the region of a view the route passes through (its viewpoint is a waypoint
+    /// between them), keeping the footprint's clearance from its boundary. So every move still
+    /// lies in space seen free around the robot.
     pub(super) fn go_shortcut(&mut self, from: usize, target: Target) -> Action<Point> {
         let (mut pts, _) = self.route(from, target.base());
         pts.extend_from_slice(&target.via);
         pts.push(target.at);
+        // The robot's position, then the waypoints, each with the view whose viewpoint it is.
+        let mut all = vec![self.views[from].at];
+        all.extend_from_slice(&pts);
+        let owner: Vec<Option<usize>> =
+            all.iter().map(|&p| self.views.iter().position(|v| v.at == p)).collect();
         let mut out = Vec::with_capacity(pts.len());
-        let (mut cur, mut i) = (self.views[from].at, 0);
-        while i < pts.len() {
-            let last = (i + SHORTCUT_LOOKAHEAD).min(pts.len() - 1);
-            let j =
-                (i + 1..=last).rev().find(|&j| self.straight_in_a_view(cur, pts[j])).unwrap_or(i);
-            out.push(pts[j]);
-            cur = pts[j];
-            i = j + 1;
+        let mut i = 0;
+        while i + 1 < all.len() {
+            let last = (i + 1 + SHORTCUT_LOOKAHEAD).min(all.len() - 1);
+            let j = (i + 2..=last)
+                .rev()
+                .find(|&j| {
+                    let mut ws: Vec<usize> = owner[i..=j].iter().flatten().copied().collect();
+                    ws.sort_unstable();
+                    ws.dedup();
+                    ws.into_iter().any(|w| self.straight_in(w, all[i], all[j]))
+                })
+                .unwrap_or(i + 1);
+            out.push(all[j]);
+            i = j;
         }
         out.reverse();
         self.route = out;
@@ -632,25 +644,22 @@ impl Known {
         self.next_move()
     }
 
-    /// Whether the straight move from `a` to `b` lies inside the region of some view, `a`
-    /// inside it or its viewpoint, keeping the footprint's clearance from its boundary.
-    fn straight_in_a_view(&self, a: Point, b: Point) -> bool {
-        let within = |v: &View, p: Point| {
+    /// Whether the straight move from `a` to `b` lies inside view `w`'s region, `a` inside it
+    /// or its viewpoint, keeping the footprint's clearance from its boundary.
+    fn straight_in(&self, w: usize, a: Point, b: Point) -> bool {
+        let v = &self.views[w];
+        let within = |p: Point| {
             p[0] >= v.bounds[0][0]
                 && p[0] <= v.bounds[1][0]
                 && p[1] >= v.bounds[0][1]
                 && p[1] <= v.bounds[1][1]
         };
-        self.views.iter().enumerate().any(|(w, v)| {
-            within(v, a)
-                && within(v, b)
-                && (v.at == a || ring_side(&v.polygon, a) == RingSide::Inside)
-                && reaches(&v.polygon, a, b)
-                && {
-                    let c = self.clearance(w);
-                    c == 0.0 || keeps_clear(&v.polygon, a, b, c)
-                }
-        })
+        let c = self.clearance(w);
+        within(a)
+            && within(b)
+            && (c == 0.0 || keeps_clear(&v.polygon, a, b, c))
+            && (v.at == a || ring_side(&v.polygon, a) == RingSide::Inside)
+            && reaches(&v.polygon, a, b)
     }
 
     /// The next action of the planned trip: the next waypoint, or the scan at its end.
