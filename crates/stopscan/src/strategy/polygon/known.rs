@@ -749,7 +749,9 @@ fn below_rule(sensor: &Sensor, at: Point, p: Point, q: Point) -> Option<f64> {
 const SHORTCUT_LOOKAHEAD: usize = 24;
 
 /// The least angle (radians) under which a corner must see a window part to be worth a scan
-/// that looks through it ([`Known::clear_point`]'s last resort): 15°.
+/// that looks through it ([`Known::clear_point`]'s last resort): 15°. A corner on the
+/// window's own line sees nothing new. 5° and 10° were tried on willow-full (0.05 m and
+/// 0.1 m cells): coverage moved both ways by up to 2% from map to map, with more scans.
 const MIN_LOOK_ANGLE: f64 = std::f64::consts::PI / 12.0;
 
 /// The angle (radians, in [0, π]) the segment `g` subtends from `z`.
