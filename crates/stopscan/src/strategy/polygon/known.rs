@@ -130,10 +130,23 @@ pub(super) struct Known {
     #[serde(default)]
     pub(super) skipped: Skipped,
     pub(super) views: Vec<View>,
+    /// Window parts closed as out of reach, to be tried again when a later view holds their
+    /// near side.
+    #[serde(default)]
+    deferred: Vec<Deferred>,
     /// The window part the next scan is for.
     pending: Option<Target>,
     /// Waypoints still to drive, last first.
     route: Vec<Point>,
+}
+
+/// A window part closed as out of reach, and points on its near side (beside its middle).
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+struct Deferred {
+    view: usize,
+    window: usize,
+    gap: [f64; 2],
+    near: Vec<Point>,
 }
 
 /// Windows closed without a visit, and why.
@@ -277,7 +290,9 @@ impl Known {
         if let Some(t) = pending.filter(|t| t.off_gap) {
             self.views[t.view].windows[t.window].no_junction = true;
         }
-        self.views.len() - 1
+        let nv = self.views.len() - 1;
+        self.revive(nv);
+        nv
     }
 
     /// The next viewpoint for the first unexplored window of `view` (the paper's Step 5): a
@@ -385,6 +400,7 @@ impl Known {
                     return Some((Target { at, via, anchor: Some(w), ..target }, open));
                 }
                 self.skipped.out_of_reach += 1;
+                self.deferred.push(Deferred { view, window: k, gap, near });
                 self.handled(&target);
                 continue;
             }
@@ -406,6 +422,37 @@ impl Known {
             // robot stands would only repeat this view: the part counts as handled, as it would
             // after a scan for it, so that every scan makes progress.
             self.handled(&target);
+        }
+    }
+
+    /// Opens again the deferred window parts whose near side the new view `nv` holds: a
+    /// viewpoint in its region may reach them. Their windows' cover is recomputed from every
+    /// view, so the parts seen since stay covered.
+    fn revive(&mut self, nv: usize) {
+        let (revived, kept): (Vec<Deferred>, Vec<Deferred>) = std::mem::take(&mut self.deferred)
+            .into_iter()
+            .partition(|d| d.view != nv && d.near.iter().any(|&z| self.inside(nv, z)));
+        self.deferred = kept;
+        for d in revived {
+            self.skipped.out_of_reach -= 1;
+            let v = &mut self.views[d.view];
+            v.explored = false;
+            let w = &mut v.windows[d.window];
+            let mut open = Vec::with_capacity(w.covered.len() + 1);
+            for &[a, b] in &w.covered {
+                if b <= d.gap[0] || a >= d.gap[1] {
+                    open.push([a, b]);
+                    continue;
+                }
+                if a < d.gap[0] {
+                    open.push([a, d.gap[0]]);
+                }
+                if b > d.gap[1] {
+                    open.push([d.gap[1], b]);
+                }
+            }
+            w.covered = open;
+            w.checked = 0;
         }
     }
 
