@@ -438,20 +438,7 @@ impl Known {
             let v = &mut self.views[d.view];
             v.explored = false;
             let w = &mut v.windows[d.window];
-            let mut open = Vec::with_capacity(w.covered.len() + 1);
-            for &[a, b] in &w.covered {
-                if b <= d.gap[0] || a >= d.gap[1] {
-                    open.push([a, b]);
-                    continue;
-                }
-                if a < d.gap[0] {
-                    open.push([a, d.gap[0]]);
-                }
-                if b > d.gap[1] {
-                    open.push([d.gap[1], b]);
-                }
-            }
-            w.covered = open;
+            w.covered = uncover(&w.covered, d.gap);
             w.checked = 0;
         }
     }
@@ -780,6 +767,24 @@ impl Known {
     }
 }
 
+/// The covered intervals `covered` without the interval `gap`.
+fn uncover(covered: &Intervals, gap: [f64; 2]) -> Intervals {
+    let mut out = Vec::with_capacity(covered.len() + 1);
+    for &[a, b] in covered {
+        if b <= gap[0] || a >= gap[1] {
+            out.push([a, b]);
+            continue;
+        }
+        if a < gap[0] {
+            out.push([a, gap[0]]);
+        }
+        if b > gap[1] {
+            out.push([gap[1], b]);
+        }
+    }
+    out
+}
+
 /// The length of the window segment `p q` seen from `at` if the sensor's rule finds it too
 /// short to be worth a trip ([`Sensor::min_window_at`] its near end's distance), `None` if it
 /// is worth one.
@@ -833,5 +838,21 @@ pub(super) fn act<S>(
             let v = known(s).add(obs);
             plan(s, v)
         }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn uncovering_a_gap_splits_and_trims_the_intervals_it_meets() {
+        let covered = vec![[0.0, 0.2], [0.3, 0.6], [0.7, 1.0]];
+        // A gap inside one interval splits it; one across two trims both.
+        assert_eq!(uncover(&covered, [0.4, 0.5]), [[0.0, 0.2], [0.3, 0.4], [0.5, 0.6], [0.7, 1.0]]);
+        assert_eq!(uncover(&covered, [0.5, 0.8]), [[0.0, 0.2], [0.3, 0.5], [0.8, 1.0]]);
+        // A gap holding an interval whole removes it; one between intervals changes nothing.
+        assert_eq!(uncover(&covered, [0.25, 0.65]), [[0.0, 0.2], [0.7, 1.0]]);
+        assert_eq!(uncover(&covered, [0.2, 0.3]), covered);
     }
 }
