@@ -211,24 +211,29 @@ fn a_door_seen_at_a_slant_is_still_passed() {
     }
 }
 
+/// Runs every strategy on `inst` with a 0.2 m robot and a 20 m range from the roomiest
+/// start, and asserts that each sees at least 99% of what its reachable region sees (brute
+/// force on a `step` grid).
+fn every_strategy_covers(inst: &Instance, step: f64, what: &str) {
+    let s = setup(0.2);
+    let world =
+        PolygonWorld::with_robot(inst.domain.clone(), Some(20.0), &s.footprint, None).unwrap();
+    let start = world.reach().unwrap().start();
+    for name in REGISTRY.names() {
+        let mut strategy = build_for(name, &s).unwrap();
+        let r = run(&world, start, &s.cost, strategy.as_mut(), &mut NoObserver)
+            .unwrap_or_else(|e| panic!("{what} / {name}: {e}"));
+        let at: Vec<Point> = r.scans.iter().map(|o| o.at).collect();
+        let cov = brute_coverage(&inst.domain, 0.2, &at, step);
+        assert!(cov >= 0.99, "{what} / {name}: {cov}");
+    }
+}
+
 #[test]
 fn office_floors_are_covered_with_a_footprint() {
-    // Generated offices with a 0.2 m robot and a 20 m range: every strategy sees at least 99%
-    // of what its reachable region sees (brute force on a 0.25 m grid).
     for seed in [3u64, 8] {
         let inst = office(2, (seed % 4) as usize, seed).unwrap();
-        let s = setup(0.2);
-        let world =
-            PolygonWorld::with_robot(inst.domain.clone(), Some(20.0), &s.footprint, None).unwrap();
-        let start = world.reach().unwrap().start();
-        for name in REGISTRY.names() {
-            let mut strategy = build_for(name, &s).unwrap();
-            let r = run(&world, start, &s.cost, strategy.as_mut(), &mut NoObserver)
-                .unwrap_or_else(|e| panic!("office {seed} / {name}: {e}"));
-            let at: Vec<Point> = r.scans.iter().map(|o| o.at).collect();
-            let cov = brute_coverage(&inst.domain, 0.2, &at, 0.25);
-            assert!(cov >= 0.99, "office {seed} / {name}: {cov}");
-        }
+        every_strategy_covers(&inst, 0.25, &format!("office {seed}"));
     }
 }
 
@@ -239,17 +244,5 @@ fn space_bounded_only_by_windows_out_of_reach_is_still_visited() {
     // by windows of those corridor views, which no viewpoint in their own regions reaches
     // with the clearance. It is reached from the region of the view inside the room (the
     // nearest-frontier run left 1.5% of what the reachable region sees unseen there).
-    let inst = office(4, 10, 106).unwrap();
-    let s = setup(0.2);
-    let world =
-        PolygonWorld::with_robot(inst.domain.clone(), Some(20.0), &s.footprint, None).unwrap();
-    let start = world.reach().unwrap().start();
-    for name in REGISTRY.names() {
-        let mut strategy = build_for(name, &s).unwrap();
-        let r = run(&world, start, &s.cost, strategy.as_mut(), &mut NoObserver)
-            .unwrap_or_else(|e| panic!("{name}: {e}"));
-        let at: Vec<Point> = r.scans.iter().map(|o| o.at).collect();
-        let cov = brute_coverage(&inst.domain, 0.2, &at, 0.4);
-        assert!(cov >= 0.99, "{name}: {cov}");
-    }
+    every_strategy_covers(&office(4, 10, 106).unwrap(), 0.4, "office 106");
 }

@@ -25,7 +25,6 @@
 //!   part and the run ends; it ends only when no window part worth a trip is open (windows
 //!   the sensor rule excludes, or that no viewpoint with the footprint's clearance can be
 //!   planned for, are counted in the run record).
-
 //!
 //! # Tried and not kept
 //! Measured with `stopscan bench floors --data ../shared/data/ros-maps` (13,129 s with the

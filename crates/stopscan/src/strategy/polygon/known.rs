@@ -176,6 +176,14 @@ impl View {
         reaches(&self.polygon, self.at, z)
     }
 
+    /// Whether `p` lies in the region's bounding box (closed).
+    fn in_bounds(&self, p: Point) -> bool {
+        p[0] >= self.bounds[0][0]
+            && p[0] <= self.bounds[1][0]
+            && p[1] >= self.bounds[0][1]
+            && p[1] <= self.bounds[1][1]
+    }
+
     /// How many windows the view's region has.
     pub(super) fn windows_len(&self) -> usize {
         self.windows.len()
@@ -431,7 +439,7 @@ impl Known {
     fn revive(&mut self, nv: usize) {
         let (revived, kept): (Vec<Deferred>, Vec<Deferred>) = std::mem::take(&mut self.deferred)
             .into_iter()
-            .partition(|d| d.view != nv && d.near.iter().any(|&z| self.inside(nv, z)));
+            .partition(|d| d.near.iter().any(|&z| self.inside(nv, z)));
         self.deferred = kept;
         for d in revived {
             self.skipped.out_of_reach -= 1;
@@ -558,11 +566,7 @@ impl Known {
     /// Whether `z` lies strictly inside view `view`'s region.
     pub(super) fn inside(&self, view: usize, z: Point) -> bool {
         let v = &self.views[view];
-        z[0] >= v.bounds[0][0]
-            && z[0] <= v.bounds[1][0]
-            && z[1] >= v.bounds[0][1]
-            && z[1] <= v.bounds[1][1]
-            && ring_side(&v.polygon, z) == RingSide::Inside
+        v.in_bounds(z) && ring_side(&v.polygon, z) == RingSide::Inside
     }
 
     /// How far view `view`'s region reaches from its viewpoint (its farthest vertex).
@@ -682,17 +686,11 @@ impl Known {
     /// or its viewpoint, keeping the footprint's clearance from its boundary.
     fn straight_in(&self, w: usize, a: Point, b: Point) -> bool {
         let v = &self.views[w];
-        let within = |p: Point| {
-            p[0] >= v.bounds[0][0]
-                && p[0] <= v.bounds[1][0]
-                && p[1] >= v.bounds[0][1]
-                && p[1] <= v.bounds[1][1]
-        };
         let c = self.clearance(w);
-        within(a)
-            && within(b)
+        v.in_bounds(a)
+            && v.in_bounds(b)
             && (c == 0.0 || keeps_clear(&v.polygon, a, b, c))
-            && (v.at == a || ring_side(&v.polygon, a) == RingSide::Inside)
+            && (v.at == a || self.inside(w, a))
             && reaches(&v.polygon, a, b)
     }
 
