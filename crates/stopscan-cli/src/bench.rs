@@ -189,6 +189,7 @@ fn bench_floors(a: &BenchArgs, g: &Global) -> anyhow::Result<()> {
             "scans",
             "mission time (s)",
             "min coverage of reachable",
+            "min in body space",
             "failures",
         ]);
         for s in &report.totals {
@@ -197,6 +198,7 @@ fn bench_floors(a: &BenchArgs, g: &Global) -> anyhow::Result<()> {
                 s.scans.to_string(),
                 crate::output::num(Some(s.time), 1),
                 crate::output::num(Some(s.min_coverage_of_reachable), 4),
+                crate::output::num(Some(s.min_coverage_of_body_space), 4),
                 s.failures.to_string(),
             ]);
         }

@@ -182,6 +182,22 @@ fn summary(w: &mut dyn Write, o: &RunRecord) -> std::io::Result<()> {
     for (k, v) in rows {
         t.row(vec![k.into(), v]);
     }
+    if let Some(r) = &o.robot {
+        let robot: [(&str, String); 6] = [
+            (
+                "area visible from the reachable region (m²)",
+                num(Some(r.visible_from_reachable_area), 3),
+            ),
+            ("coverage of it", num(Some(r.coverage_of_reachable), 9)),
+            ("coverage of it where the robot's body fits", num(Some(r.coverage_of_body_space), 9)),
+            ("unseen in crevices narrower than the robot (m²)", num(Some(r.unseen_in_crevices), 3)),
+            ("unreachable area (m²)", num(Some(r.unreachable_area), 3)),
+            ("window parts out of reach", r.windows_out_of_reach.to_string()),
+        ];
+        for (k, v) in robot {
+            t.row(vec![k.into(), v]);
+        }
+    }
     t.write(w)
 }
 

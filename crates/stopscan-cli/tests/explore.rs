@@ -290,6 +290,11 @@ fn explore_with_a_footprint_and_a_window_rule() {
     let (vis, lost) = (f(robot, "visible_from_reachable_area"), f(robot, "unreachable_area"));
     assert!(vis > 0.0 && lost >= 0.0);
     assert!(f(robot, "coverage_of_reachable") > 0.9, "{robot}");
+    // What is left unseen splits into the body space and crevices narrower than the robot.
+    let (cov, body_cov) = (f(robot, "coverage_of_reachable"), f(robot, "coverage_of_body_space"));
+    let crevices = f(robot, "unseen_in_crevices");
+    assert!(body_cov <= 1.0 && f(robot, "body_space_area") > 0.0, "{robot}");
+    assert!(crevices >= 0.0 && crevices <= (1.0 - cov) * vis + 1e-6, "{robot}");
     // min_window defaults to the robot's width (the map's two cells are 0.1 m).
     assert_eq!(f(&r["sensor"], "min_window"), 0.4);
     assert_eq!(r["sensor"]["beams"], 720);

@@ -115,6 +115,19 @@ pub struct RobotInfo {
     /// Window parts the strategy closed because no viewpoint with the clearance could be
     /// planned for them from the view that saw them.
     pub windows_out_of_reach: usize,
+    /// The area where the robot's body can be, m²: the reachable configuration space grown
+    /// by the footprint ([`crate::offline::polygon::reach::body_space`]).
+    #[serde(default)]
+    pub body_space_area: f64,
+    /// The part of the area visible from the reachable region inside the body space that the
+    /// scans covered.
+    #[serde(default)]
+    pub coverage_of_body_space: f64,
+    /// The area visible from the reachable region, outside the body space, that no scan
+    /// covered, m²: crevices narrower than the robot (slots, a laser's see-through spikes on
+    /// a traced map), seen only along their length.
+    #[serde(default)]
+    pub unseen_in_crevices: f64,
 }
 
 /// One scan in a robot's record.

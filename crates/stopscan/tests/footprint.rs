@@ -108,6 +108,63 @@ fn a_corridor_narrower_than_the_robot_is_never_entered() {
 }
 
 #[test]
+fn the_body_space_leaves_out_crevices_narrower_than_the_robot() {
+    // A 4 × 4 room with a slot 0.2 m wide and 1.5 m deep off its top wall: a robot 0.4 m
+    // wide reaches the whole room with its body (less a hair in each corner), and not the slot.
+    let outer = vec![
+        [0.0, 0.0],
+        [4.0, 0.0],
+        [4.0, 4.0],
+        [2.1, 4.0],
+        [2.1, 5.5],
+        [1.9, 5.5],
+        [1.9, 4.0],
+        [0.0, 4.0],
+    ];
+    let d = Domain::new(outer, vec![]).unwrap();
+    let r = 0.2;
+    let world =
+        PolygonWorld::with_robot(d.clone(), None, &Footprint::disc(r).unwrap(), Some([2.0, 2.0]))
+            .unwrap();
+    let body = stopscan::offline::polygon::reach::body_space(&world).unwrap();
+    // From the definition: a grid point is in the body space when a point within r of it
+    // (sampled on rings around it) keeps r from every wall.
+    let step = 0.05;
+    let (mut inside, mut mismatched) = (0usize, 0usize);
+    for i in 0..80 {
+        for j in 0..110 {
+            let q = [(f64::from(i) + 0.5) * step, (f64::from(j) + 0.5) * step];
+            if d.locate(q) != Location::Interior {
+                continue;
+            }
+            let fits = (0..=10).any(|k| {
+                let rho = r * f64::from(k) / 10.0;
+                (0..64).any(|a| {
+                    let t = std::f64::consts::TAU * f64::from(a) / 64.0;
+                    let p = [q[0] + rho * t.cos(), q[1] + rho * t.sin()];
+                    d.locate(p) == Location::Interior && wall_distance(&d, p) >= r
+                })
+            });
+            if fits {
+                inside += 1;
+                assert!(q[1] < 4.05, "the slot at {q:?} counted as body space");
+            }
+            if fits != body.contains(q) {
+                mismatched += 1;
+            }
+        }
+    }
+    // Only grid points within a sample's spacing of the body space's edge may disagree.
+    assert!(mismatched * 100 < inside, "{mismatched} of {inside} grid points disagree");
+    let brute = inside as f64 * step * step;
+    let a = body.area();
+    assert!((a - brute).abs() < 0.02 * brute, "body space {a} m², brute force {brute} m²");
+    // The room less a sliver in each corner (r² − πr²/4 each), and nothing of the slot.
+    let room = 16.0 - 4.0 * r * r * (1.0 - std::f64::consts::FRAC_PI_4);
+    assert!(a > room - 1e-3 && a < room + 0.01, "{a}");
+}
+
+#[test]
 fn a_start_too_close_to_a_wall_is_refused_with_the_reason() {
     let d = Domain::new(vec![[0.0, 0.0], [4.0, 0.0], [4.0, 4.0], [0.0, 4.0]], vec![]).unwrap();
     let e = PolygonWorld::with_robot(d, None, &Footprint::disc(0.5).unwrap(), Some([0.2, 2.0]))

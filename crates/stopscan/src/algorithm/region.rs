@@ -152,18 +152,33 @@ pub fn configuration_space(domain: &Domain, footprint: &[Point], margin: f64) ->
             [-p[0] * f, -p[1] * f]
         })
         .collect();
+    Region::of_domain(domain).difference(&Region::overlay_all(&edge_hulls(domain, &grown)))
+}
+
+/// The domain grown by a convex `shape` placed at each of its points (a Minkowski sum):
+/// where a robot whose configuration space is `domain` can put its body, for its
+/// footprint as `shape`.
+///
+/// # Complexity
+/// One overlay of n hulls of at most 2k vertices, for n domain edges and a k-gon shape.
+pub fn dilation(domain: &Domain, shape: &[Point]) -> Region {
+    Region::of_domain(domain).union(&Region::overlay_all(&edge_hulls(domain, shape)))
+}
+
+/// The convex hull of each boundary edge of `domain` swept by `shape`.
+fn edge_hulls(domain: &Domain, shape: &[Point]) -> Vec<Vec<Point>> {
     let mut hulls = Vec::new();
     for ring in domain.rings() {
         for i in 0..ring.len() {
             let (a, b) = (ring[i], ring[(i + 1) % ring.len()]);
-            let pts: Vec<Point> = grown
+            let pts: Vec<Point> = shape
                 .iter()
                 .flat_map(|f| [[a[0] + f[0], a[1] + f[1]], [b[0] + f[0], b[1] + f[1]]])
                 .collect();
             hulls.push(convex_hull(pts));
         }
     }
-    Region::of_domain(domain).difference(&Region::overlay_all(&hulls))
+    hulls
 }
 
 /// The convex hull (counter-clockwise, Andrew's monotone chain with exact orientation).

@@ -448,6 +448,12 @@ fn robot_info(
     let seen: Vec<Vec<Point>> = run.scans.iter().map(|s| s.region.polygon.clone()).collect();
     let visible = r::visible_from(world, &r::reachable_samples(world), &seen);
     let visible_area = visible.area();
+    let covered = crate::algorithm::region::Region::union_all(&seen);
+    let body = r::body_space(world).unwrap_or_else(crate::algorithm::region::Region::empty);
+    let visible_body = visible.intersection(&body);
+    let visible_body_area = visible_body.area();
+    let unseen_body = visible_body.difference(&covered).area();
+    let unseen = visible.difference(&covered).area();
     let scale = crate::kernel::magnitude(world.domain().rings().iter().flatten());
     RobotInfo {
         footprint: setup.footprint.clone(),
@@ -472,6 +478,13 @@ fn robot_info(
             1.0
         },
         windows_out_of_reach: skipped.out_of_reach,
+        body_space_area: body.area(),
+        coverage_of_body_space: if visible_body_area > 0.0 {
+            (1.0 - unseen_body / visible_body_area).clamp(0.0, 1.0)
+        } else {
+            1.0
+        },
+        unseen_in_crevices: (unseen - unseen_body).max(0.0),
     }
 }
 

@@ -84,6 +84,12 @@ pub struct FloorRun {
     pub coverage_of_reachable: f64,
     /// Free area no reachable viewpoint was found to see, m².
     pub unreachable_area: f64,
+    /// Covered area over the area visible from the reachable configuration space inside the
+    /// robot's body space (where its body can be).
+    pub coverage_of_body_space: f64,
+    /// Area visible from the reachable configuration space that no scan covered, in crevices
+    /// narrower than the robot (outside its body space), m².
+    pub unseen_in_crevices: f64,
     /// The lower bound on the time of any exploration that sees as much, seconds.
     pub time_lower: f64,
     /// `time / time_lower`.
@@ -121,6 +127,8 @@ pub struct FloorTotal {
     pub time: f64,
     /// The lowest coverage of the reachable-visible area over the maps.
     pub min_coverage_of_reachable: f64,
+    /// The lowest coverage of the reachable-visible area inside the body space.
+    pub min_coverage_of_body_space: f64,
     /// Runs that failed.
     pub failures: usize,
 }
@@ -276,6 +284,10 @@ pub fn floors(
                     .iter()
                     .map(|r| r.coverage_of_reachable)
                     .fold(f64::INFINITY, f64::min),
+                min_coverage_of_body_space: runs
+                    .iter()
+                    .map(|r| r.coverage_of_body_space)
+                    .fold(f64::INFINITY, f64::min),
                 failures: runs.iter().filter(|r| r.error.is_some()).count(),
             }
         })
@@ -359,6 +371,9 @@ fn run_one(name: &str, env: &Environment, strategy: &str, options: &FloorsOption
                 coverage_of_reachable: robot
                     .map_or(r.metrics.coverage, |b| b.coverage_of_reachable),
                 unreachable_area: robot.map_or(0.0, |b| b.unreachable_area),
+                coverage_of_body_space: robot
+                    .map_or(r.metrics.coverage, |b| b.coverage_of_body_space),
+                unseen_in_crevices: robot.map_or(0.0, |b| b.unseen_in_crevices),
                 time_lower: r.bounds.time_lower,
                 certified_ratio: r.bounds.certified_ratio,
                 explore_seconds,
@@ -373,6 +388,8 @@ fn run_one(name: &str, env: &Environment, strategy: &str, options: &FloorsOption
             coverage: 0.0,
             coverage_of_reachable: 0.0,
             unreachable_area: 0.0,
+            coverage_of_body_space: 0.0,
+            unseen_in_crevices: 0.0,
             time_lower: 0.0,
             certified_ratio: None,
             explore_seconds,

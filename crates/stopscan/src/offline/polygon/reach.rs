@@ -41,6 +41,20 @@ pub fn unreachable_area(world: &PolygonWorld, visible: &Region) -> f64 {
     (world.domain().area() - visible.area()).max(0.0)
 }
 
+/// Where the robot's body can be: the reachable configuration space grown by the footprint
+/// ([`dilation`](crate::algorithm::region::dilation); a disc as its circumscribed polygon,
+/// so a hair more); `None` for a point robot. What lies outside it but inside the free
+/// space is a crevice narrower than the robot: a slot between furniture, or a laser's
+/// see-through spike on a traced map.
+pub fn body_space(world: &PolygonWorld) -> Option<Region> {
+    let reach = world.reach()?;
+    let shape = reach.footprint().polygon()?;
+    Some(
+        crate::algorithm::region::dilation(reach.domain(), &shape)
+            .intersection(&Region::of_domain(world.domain())),
+    )
+}
+
 /// The offline greedy reference for a robot with a footprint and a range: from the start,
 /// repeatedly add the sampled reachable viewpoint ([`reachable_samples`]) whose scan sees
 /// the most area not yet covered, until everything any of them sees is covered. Coverage is
