@@ -86,8 +86,23 @@ impl DepthFirst {
     fn plan(&mut self, v: usize) -> Action<Point> {
         self.stack.push(v);
         let mut route = Vec::new();
+        // The view whose viewpoint the route planned so far ends at.
+        let mut here = v;
         loop {
-            let Some(&top) = self.stack.last() else { return Action::Done };
+            let Some(&top) = self.stack.last() else {
+                // With a footprint, a window part closed as out of reach is opened again when
+                // a later view holds its near side (`Known`'s deferred parts), possibly after
+                // the search has backed up past its view: the search then starts again from
+                // the first view with an open part. (A point robot never defers a part.)
+                let n = self.known.views.len();
+                let Some(u) = (0..n).find(|&u| self.known.next_target(u).is_some()) else {
+                    return Action::Done;
+                };
+                route.extend(self.known.route(here, u).0);
+                here = u;
+                self.stack.push(u);
+                continue;
+            };
             if let Some(t) = self.known.next_target(top) {
                 if t.base() != top {
                     route.extend(self.known.route(top, t.base()).0);
@@ -100,6 +115,7 @@ impl DepthFirst {
                 // view below on the stack, which is the parent unless the scan's trip started
                 // from another view, see `Target::base`).
                 route.extend(self.known.route(top, next).0);
+                here = next;
             }
         }
     }

@@ -49,6 +49,14 @@ struct Window {
     /// Uncovered parts shorter than this (in parameter) are ignored ([`cover::tolerance`]).
     tol: f64,
     covered: Intervals,
+    /// The parts of `covered` that the sensor rule closed as what was left open of the
+    /// window by other views (not a whole window below the rule).
+    #[serde(default)]
+    ruled: Intervals,
+    /// The rule no longer applies to the window: part of it was opened again as part of a
+    /// longer opening ([`Known::reopen_wide_openings`]).
+    #[serde(default)]
+    rule_lifted: bool,
     checked: usize,
     /// The piece is a range frontier (a chord of the sensor's range arc), not a window: the
     /// sensor rule does not apply to it.
@@ -274,6 +282,8 @@ impl Known {
                         to,
                         tol,
                         covered,
+                        ruled: Vec::new(),
+                        rule_lifted: false,
                         checked: 0,
                         range_frontier,
                         no_junction: false,
@@ -352,6 +362,7 @@ impl Known {
             let p = [from[0] + gap[0] * dx, from[1] + gap[0] * dy];
             let q = [from[0] + gap[1] * dx, from[1] + gap[1] * dy];
             if !w.range_frontier
+                && !w.rule_lifted
                 && let Some(len) = below_rule(&self.sensor, self.views[view].at, p, q)
             {
                 self.skipped.below_rule += 1;
@@ -359,6 +370,7 @@ impl Known {
                 let w = &mut self.views[view].windows[k];
                 w.covered.push(gap);
                 cover::merge(&mut w.covered);
+                w.ruled.push(gap);
                 continue;
             }
             let tm = match self.placement {
@@ -431,6 +443,106 @@ impl Known {
             // after a scan for it, so that every scan makes progress.
             self.handled(&target);
         }
+    }
+
+    /// When nothing else is left open: the sensor rule judged each view's window parts
+    /// alone, but where views overlap, an opening (a door seen at a slant from both sides of
+    /// a corridor) may be left as a short open part of each of several windows, each below the
+    /// rule. This looks at the frontier of everything seen (the boundary of the union of the
+    /// views' regions that lies on their windows) and opens again the parts the rule closed
+    /// along every chain of it at least `min_window` long; the rule is then lifted for their
+    /// windows, so each window is reopened at most once and the exploration ends. Returns
+    /// whether any part was opened.
+    pub(super) fn reopen_wide_openings(&mut self) -> bool {
+        let need = self.sensor.min_window_at(0.0);
+        if self.sensor.excludes_nothing() || self.views.is_empty() {
+            return false;
+        }
+        if !self
+            .views
+            .iter()
+            .any(|v| v.windows.iter().any(|w| !w.ruled.is_empty() && !w.rule_lifted))
+        {
+            return false;
+        }
+        let polys: Vec<Vec<Point>> = self.views.iter().map(|v| v.polygon.clone()).collect();
+        let union = crate::algorithm::region::Region::union_all(&polys);
+        // The windows (view, index) an edge of the union's boundary lies on, and where.
+        let on_windows = |m: Point| -> Vec<WindowAt> {
+            let eps = 1e-6 * m[0].abs().max(m[1].abs()).max(1.0);
+            let mut out = Vec::new();
+            for (vi, v) in self.views.iter().enumerate() {
+                if m[0] < v.bounds[0][0] - eps
+                    || m[0] > v.bounds[1][0] + eps
+                    || m[1] < v.bounds[0][1] - eps
+                    || m[1] > v.bounds[1][1] + eps
+                {
+                    continue;
+                }
+                for (k, w) in v.windows.iter().enumerate() {
+                    if segments_distance(w.from, w.to, m, m) <= eps {
+                        let (dx, dy) = (w.to[0] - w.from[0], w.to[1] - w.from[1]);
+                        let t = ((m[0] - w.from[0]) * dx + (m[1] - w.from[1]) * dy)
+                            / (dx * dx + dy * dy);
+                        out.push((vi, k, t));
+                    }
+                }
+            }
+            out
+        };
+        let mut reopen: Vec<WindowAt> = Vec::new();
+        for ring in union.shapes.iter().flatten() {
+            let n = ring.len();
+            let edges: Vec<(f64, Vec<WindowAt>)> = (0..n)
+                .map(|i| {
+                    let (a, b) = (ring[i], ring[(i + 1) % n]);
+                    let m = [f64::midpoint(a[0], b[0]), f64::midpoint(a[1], b[1])];
+                    ((b[0] - a[0]).hypot(b[1] - a[1]), on_windows(m))
+                })
+                .collect();
+            // Chains of consecutive frontier edges, starting after a wall edge (a ring that is
+            // all frontier is one chain).
+            let start = edges.iter().position(|e| e.1.is_empty()).map_or(0, |i| i + 1);
+            let mut chain: Vec<usize> = Vec::new();
+            for j in 0..=n {
+                let i = (start + j) % n;
+                if j < n && !edges[i].1.is_empty() {
+                    chain.push(i);
+                    continue;
+                }
+                // The opening's width: from where the chain leaves a wall to where it meets
+                // one again (the whole ring's length when it touches no wall).
+                let width = match (chain.first(), chain.last()) {
+                    (Some(&f), Some(&l)) if chain.len() < n => {
+                        let (a, b) = (ring[f], ring[(l + 1) % n]);
+                        (b[0] - a[0]).hypot(b[1] - a[1])
+                    }
+                    _ => chain.iter().map(|&c| edges[c].0).sum(),
+                };
+                if width >= need {
+                    reopen.extend(chain.iter().flat_map(|&c| edges[c].1.iter().copied()));
+                }
+                chain.clear();
+            }
+        }
+        let mut any = false;
+        for (vi, k, t) in reopen {
+            let w = &mut self.views[vi].windows[k];
+            if w.rule_lifted {
+                continue;
+            }
+            let Some(&gap) = w.ruled.iter().find(|g| g[0] <= t && t <= g[1]) else { continue };
+            w.covered = uncover(&w.covered, gap);
+            w.ruled.retain(|g| *g != gap);
+            w.rule_lifted = true;
+            w.checked = 0;
+            let len = (gap[1] - gap[0]) * (w.to[0] - w.from[0]).hypot(w.to[1] - w.from[1]);
+            self.views[vi].explored = false;
+            self.skipped.below_rule -= 1;
+            self.skipped.below_rule_length -= len;
+            any = true;
+        }
+        any
     }
 
     /// Opens again the deferred window parts whose near side the new view `nv` holds: a
@@ -795,6 +907,10 @@ fn below_rule(sensor: &Sensor, at: Point, p: Point, q: Point) -> Option<f64> {
     (len < sensor.min_window_at(d(p).min(d(q)))).then_some(len)
 }
 
+/// A point on a window: the view, the window's index among its windows, and the parameter
+/// along it (0 at `from`, 1 at `to`).
+type WindowAt = (usize, usize, f64);
+
 /// How many waypoints ahead [`Known::go_shortcut`] looks for a straight move.
 const SHORTCUT_LOOKAHEAD: usize = 24;
 
@@ -834,7 +950,11 @@ pub(super) fn act<S>(
         PolygonFeedback::Arrived => known(s).next_move(),
         PolygonFeedback::Scanned(obs) => {
             let v = known(s).add(obs);
-            plan(s, v)
+            let mut a = plan(s, v);
+            while matches!(a, Action::Done) && known(s).reopen_wide_openings() {
+                a = plan(s, v);
+            }
+            a
         }
     }
 }
@@ -842,6 +962,75 @@ pub(super) fn act<S>(
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// A corridor 1.2 m wide and 20 m long; in its right wall (0.1 m thick) a door of width
+    /// `door` at 10 ≤ y ≤ 10 + door into a 4 × 5 m room. A 0.4 m robot, windows under 0.4 m
+    /// not worth a trip; scans in the corridor at (0.6, 4) and (0.6, 16).
+    fn corridor_views(door: f64) -> Known {
+        use crate::algorithm::visibility::Visibility;
+        use crate::geometry::Domain;
+        let ring = vec![
+            [0.0, 0.0],
+            [1.2, 0.0],
+            [1.2, 10.0],
+            [1.3, 10.0],
+            [1.3, 8.0],
+            [5.3, 8.0],
+            [5.3, 13.0],
+            [1.3, 13.0],
+            [1.3, 10.0 + door],
+            [1.2, 10.0 + door],
+            [1.2, 20.0],
+            [0.0, 20.0],
+        ];
+        let vis = Visibility::new(Domain::new(ring, vec![]).unwrap()).unwrap();
+        let scan = |at: Point| PolygonObservation { at, region: vis.query(at).unwrap() };
+        let setup = RobotSetup {
+            footprint: Footprint::disc(0.2).unwrap(),
+            sensor: Sensor { min_window: 0.4, ..Sensor::default() },
+            ..RobotSetup::default()
+        };
+        let mut k = Known::for_robot(&setup);
+        k.add(&scan([0.6, 4.0]));
+        k.add(&scan([0.6, 16.0]));
+        k
+    }
+
+    /// The targets of every window of every view.
+    fn all_targets(k: &mut Known) -> Vec<Target> {
+        (0..k.views.len())
+            .flat_map(|v| (0..k.views[v].windows.len()).map(move |i| (v, i)))
+            .collect::<Vec<_>>()
+            .into_iter()
+            .filter_map(|(v, i)| k.window_target(v, i).map(|t| t.0))
+            .collect()
+    }
+
+    #[test]
+    fn a_door_left_open_in_short_parts_by_two_views_is_opened_again() {
+        // Each corridor view sees the 0.6 m door at a slant, and the other covers most of its
+        // window: what is left open of each is under 0.4 m, so the rule closed both.
+        let mut k = corridor_views(0.6);
+        assert!(all_targets(&mut k).is_empty());
+        assert!(k.skipped.below_rule >= 2);
+        // The frontier of both views there spans the door, wider than the rule: reopened.
+        assert!(k.reopen_wide_openings());
+        let ts = all_targets(&mut k);
+        assert!(!ts.is_empty());
+        for t in &ts {
+            let [p, q] = k.gap_of(t);
+            assert!(p[0] > 1.2 && q[0] > 1.2 && p[1] > 8.0 && q[1] < 13.0, "{p:?} {q:?}");
+        }
+        // Once only: with the rule lifted for those windows, nothing more to reopen.
+        for t in &ts {
+            k.handled(t);
+        }
+        assert!(!k.reopen_wide_openings());
+        // A door narrower than the rule stays closed.
+        let mut k = corridor_views(0.3);
+        assert!(all_targets(&mut k).is_empty());
+        assert!(!k.reopen_wide_openings());
+    }
 
     #[test]
     fn uncovering_a_gap_splits_and_trims_the_intervals_it_meets() {
