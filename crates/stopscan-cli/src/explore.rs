@@ -86,7 +86,11 @@ pub(crate) fn run(a: &ExploreArgs, g: &Global) -> anyhow::Result<()> {
     let o = stopscan::pipeline::explore::explore_file(&a.env, start, &options, &mut |m| {
         spinner.show(m);
     })
-    .map_err(explore_error)?;
+    .map_err(|e| match e {
+        // The robot does not fit this environment: say which file.
+        ExploreError::World(w) => anyhow::anyhow!("{}: {w}", a.env.display()),
+        e => explore_error(e),
+    })?;
     drop(spinner);
     let out = g.out.clone().unwrap_or_else(|| PathBuf::from("run.json"));
     finish(g, &o, &out, a.svg.as_deref())

@@ -317,5 +317,14 @@ fn footprint_flags_are_checked() {
     fails(&["explore", "--env", &map, "--min-window", "-2"], &["--min-window", "-2"]);
     fails(&["explore", "--env", &map, "--beams", "0"], &["--beams"]);
     // A robot too big for the start the file gives.
-    fails(&["explore", "--env", &map, "--robot-radius", "3"], &["footprint", "fit"]);
+    fails(
+        &["explore", "--env", &map, "--robot-radius", "3"],
+        &["office.geojson", "footprint", "fit"],
+    );
+    // One that fits nowhere on a map without a start.
+    let ros = common::fixture("ros-maps/turtlebot3_world.yaml");
+    fails(
+        &["explore", "--env", &ros, "--robot-radius", "3"],
+        &["turtlebot3_world.yaml", "fits nowhere"],
+    );
 }
