@@ -425,9 +425,11 @@ pub fn explore(
     );
     let mut record = RunRecord::polygon(name, &world, &o.strategy, &o.cost, &run, &refs, o.seed);
     record.sensor = SensorInfo::of(&setup.sensor, &strategy.skipped());
-    if let Some(reach) = world.reach() {
+    // A footprint makes the run partial, so what it saw is at hand.
+    if let (Some(reach), Some(seen)) = (world.reach(), seen.as_ref()) {
         progress("offline: the area visible from the reachable configuration space");
-        record.robot = Some(robot_info(&world, reach, &setup, &run, &record, &strategy.skipped()));
+        let skipped = strategy.skipped();
+        record.robot = Some(robot_info(&world, reach, &setup, &run, &record, &skipped, seen));
     }
     let mut record = record.in_frame(&frame);
     record.error = failure.as_ref().map(ToString::to_string);
@@ -435,7 +437,8 @@ pub fn explore(
 }
 
 /// The footprint's part of the run record: the configuration space, what can be seen from
-/// it ([`crate::offline::polygon::reach`]) and what the run covered of that.
+/// it ([`crate::offline::polygon::reach`]) and what the run covered of that (`covered`: the
+/// union of its scans' regions).
 fn robot_info(
     world: &PolygonWorld,
     reach: &crate::world::polygon::Reach,
@@ -443,17 +446,17 @@ fn robot_info(
     run: &crate::sim::polygon::PolygonRun,
     record: &RunRecord,
     skipped: &crate::strategy::polygon::Skipped,
+    covered: &crate::algorithm::region::Region,
 ) -> RobotInfo {
     use crate::offline::polygon::reach as r;
     let seen: Vec<Vec<Point>> = run.scans.iter().map(|s| s.region.polygon.clone()).collect();
     let visible = r::visible_from(world, &r::reachable_samples(world), &seen);
     let visible_area = visible.area();
-    let covered = crate::algorithm::region::Region::union_all(&seen);
     let body = r::body_space(world).unwrap_or_else(crate::algorithm::region::Region::empty);
     let visible_body = visible.intersection(&body);
     let visible_body_area = visible_body.area();
-    let unseen_body = visible_body.difference(&covered).area();
-    let unseen = visible.difference(&covered).area();
+    let unseen_body = visible_body.difference(covered).area();
+    let unseen = visible.difference(covered).area();
     let scale = crate::kernel::magnitude(world.domain().rings().iter().flatten());
     RobotInfo {
         footprint: setup.footprint.clone(),

@@ -186,10 +186,15 @@ impl View {
 
     /// Whether `p` lies in the region's bounding box (closed).
     fn in_bounds(&self, p: Point) -> bool {
-        p[0] >= self.bounds[0][0]
-            && p[0] <= self.bounds[1][0]
-            && p[1] >= self.bounds[0][1]
-            && p[1] <= self.bounds[1][1]
+        self.near_bounds(p, 0.0)
+    }
+
+    /// Whether `p` lies in the region's bounding box grown by `eps`.
+    fn near_bounds(&self, p: Point, eps: f64) -> bool {
+        p[0] >= self.bounds[0][0] - eps
+            && p[0] <= self.bounds[1][0] + eps
+            && p[1] >= self.bounds[0][1] - eps
+            && p[1] <= self.bounds[1][1] + eps
     }
 
     /// How many windows the view's region has.
@@ -472,11 +477,7 @@ impl Known {
             let eps = 1e-6 * m[0].abs().max(m[1].abs()).max(1.0);
             let mut out = Vec::new();
             for (vi, v) in self.views.iter().enumerate() {
-                if m[0] < v.bounds[0][0] - eps
-                    || m[0] > v.bounds[1][0] + eps
-                    || m[1] < v.bounds[0][1] - eps
-                    || m[1] > v.bounds[1][1] + eps
-                {
+                if !v.near_bounds(m, eps) {
                     continue;
                 }
                 for (k, w) in v.windows.iter().enumerate() {
