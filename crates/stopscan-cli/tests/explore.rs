@@ -295,6 +295,9 @@ fn explore_with_a_footprint_and_a_window_rule() {
     let crevices = f(robot, "unseen_in_crevices");
     assert!(body_cov <= 1.0 && f(robot, "body_space_area") > 0.0, "{robot}");
     assert!(crevices >= 0.0 && crevices <= (1.0 - cov) * vis + 1e-6, "{robot}");
+    // Never more than what the run left unseen of the visible area, as the metrics count it.
+    let unseen = vis - f(&r["metrics"], "covered_area");
+    assert!(crevices <= unseen + 1e-9, "{r}");
     // min_window defaults to the robot's width (the map's two cells are 0.1 m).
     assert_eq!(f(&r["sensor"], "min_window"), 0.4);
     assert_eq!(r["sensor"]["beams"], 720);

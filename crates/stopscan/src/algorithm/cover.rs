@@ -238,9 +238,21 @@ fn for_each_window(regions: &[VisibilityRegion], mut f: impl FnMut(Point, Point,
 /// run measures 0; a real gap measures its area, to the overlay's precision.
 pub fn uncovered_area(domain: &crate::geometry::Domain, seen: &[Vec<Point>]) -> f64 {
     use crate::algorithm::region::Region;
-    use crate::geometry::Location;
     let union = Region::union_all(seen);
-    let diff = Region::of_domain(domain).difference(&union);
+    uncovered_area_of(domain, &Region::of_domain(domain), seen, &union)
+}
+
+/// The area of `part` (a region of the free space of `domain`) that no polygon of `seen`
+/// (whose union is `union`) covers, counting only what is really uncovered, as
+/// [`uncovered_area`] does for the whole free space.
+pub fn uncovered_area_of(
+    domain: &crate::geometry::Domain,
+    part: &crate::algorithm::region::Region,
+    seen: &[Vec<Point>],
+    union: &crate::algorithm::region::Region,
+) -> f64 {
+    use crate::geometry::Location;
+    let diff = part.difference(union);
     let boxes: Vec<[Point; 2]> = seen.iter().map(|p| bounds_of(p)).collect();
     let covered = |p: Point| {
         seen.iter().zip(&boxes).any(|(poly, b)| {

@@ -455,8 +455,11 @@ fn robot_info(
     let body = r::body_space(world).unwrap_or_else(crate::algorithm::region::Region::empty);
     let visible_body = visible.intersection(&body);
     let visible_body_area = visible_body.area();
-    let unseen_body = visible_body.difference(covered).area();
-    let unseen = visible.difference(covered).area();
+    // What no scan saw, in the visible area (as the coverage counts it) and in its part where
+    // the body fits (the same exact test of each uncovered piece); the rest is in crevices.
+    let unseen = (visible_area - record.metrics.covered_area).max(0.0);
+    let unseen_body =
+        crate::algorithm::cover::uncovered_area_of(world.domain(), &visible_body, &seen, covered);
     let scale = crate::kernel::magnitude(world.domain().rings().iter().flatten());
     RobotInfo {
         footprint: setup.footprint.clone(),
