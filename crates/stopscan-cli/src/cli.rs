@@ -352,6 +352,15 @@ pub(crate) struct ExploreArgs {
     /// cells of an occupancy map; 0 for a point robot on a polygon].
     #[arg(long, allow_negative_numbers = true)]
     pub(crate) min_window: Option<f64>,
+    /// The smallest pocket of unseen space enclosed by what was seen (the back of a pillar,
+    /// a desk's hidden face) worth a trip, as a share of the area seen so far [default:
+    /// 0.005 where --min-window has a default above 0; 0 for a point robot on a polygon].
+    #[arg(long, allow_negative_numbers = true)]
+    pub(crate) min_pocket: Option<f64>,
+    /// The largest pocket --min-pocket may leave unvisited, square metres (keeps a small room
+    /// in a large building a room).
+    #[arg(long, allow_negative_numbers = true, default_value_t = 2.0)]
+    pub(crate) pocket_cap: f64,
     /// Compute the offline greedy reference for domains up to this many vertices.
     #[arg(long, default_value_t = 1000, allow_negative_numbers = true, value_parser = count_at_least(0))]
     pub(crate) greedy_max_vertices: usize,

@@ -52,6 +52,8 @@ fn options(a: &ExploreArgs, g: &Global) -> anyhow::Result<ExploreOptions> {
         beams: a.beams.map(|b| u32::try_from(b).unwrap_or(u32::MAX)),
         min_feature: a.min_feature,
         min_window: a.min_window,
+        min_pocket: a.min_pocket,
+        pocket_cap: a.pocket_cap,
         limits: ReferenceLimits {
             greedy_max_vertices: a.greedy_max_vertices,
             optimum_max_vertices: a.optimum_max_vertices,

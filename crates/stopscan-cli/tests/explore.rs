@@ -200,7 +200,9 @@ fn explore_simplifies_ros_maps_as_map_import_does() {
     let vertices = |tol: Option<&str>| {
         let geo = dir.join("m.geojson");
         let mut import = vec!["map", "import", &map, "-o", geo.to_str().unwrap()];
-        let mut run = vec!["explore", "--env", &map, "--out", out.to_str().unwrap()];
+        // Without the rule's pocket term, whose share of a 20 m² map is 0.1 m².
+        let mut run =
+            vec!["explore", "--env", &map, "--out", out.to_str().unwrap(), "--min-pocket", "0"];
         run.extend(quick);
         if let Some(t) = tol {
             import.extend(["--simplify", t]);
@@ -302,10 +304,16 @@ fn explore_with_a_footprint_and_a_window_rule() {
     assert_eq!(f(&r["sensor"], "min_window"), 0.4);
     assert_eq!(r["sensor"]["beams"], 720);
     assert!(r["sensor"]["window_rule"].as_str().unwrap().contains("d·2π/720"));
+    // The pocket term is on by default on a map: 0.5% of the area seen, at most 2 m².
+    assert_eq!(f(&r["sensor"], "min_pocket"), 0.005);
+    assert_eq!(f(&r["sensor"], "pocket_cap"), 2.0);
+    assert!(r["sensor"]["windows_into_small_pockets"].is_u64(), "{r}");
+    assert!(r["sensor"]["window_rule"].as_str().unwrap().contains("(pocket_cap)"));
     // Without a footprint on a polygon, nothing is added to the record.
     let plain = json(&["explore", "--env", &common::fixture("office.geojson")]);
     assert!(plain.get("robot").is_none());
     assert!(plain["sensor"].get("window_rule").is_none());
+    assert!(plain["sensor"].get("min_pocket").is_none());
 }
 
 #[test]
@@ -318,6 +326,8 @@ fn footprint_flags_are_checked() {
     );
     fails(&["explore", "--env", &map, "--footprint", "square"], &["--footprint", "[[x, y]"]);
     fails(&["explore", "--env", &map, "--min-window", "-2"], &["--min-window", "-2"]);
+    fails(&["explore", "--env", &map, "--min-pocket", "1.5"], &["--min-pocket", "1.5"]);
+    fails(&["explore", "--env", &map, "--pocket-cap", "-1"], &["--pocket-cap", "-1"]);
     fails(&["explore", "--env", &map, "--beams", "0"], &["--beams"]);
     // A robot too big for the start the file gives.
     fails(

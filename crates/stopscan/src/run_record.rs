@@ -63,6 +63,13 @@ pub struct SensorInfo {
     /// The shortest window worth a trip, metres (absent: every window counts).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub min_window: Option<f64>,
+    /// The smallest enclosed pocket worth a trip, as a share of the area seen (absent: every
+    /// pocket counts).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub min_pocket: Option<f64>,
+    /// The largest pocket the rule may leave, square metres (absent: every pocket counts).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub pocket_cap: Option<f64>,
     /// The window rule in words (absent: every window counts).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub window_rule: Option<String>,
@@ -72,6 +79,10 @@ pub struct SensorInfo {
     /// Their total length, metres.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub windows_below_rule_length: Option<f64>,
+    /// Window parts closed without a visit because they open into a pocket below
+    /// `min_pocket` (absent: no pocket term).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub windows_into_small_pockets: Option<usize>,
 }
 
 impl SensorInfo {
@@ -83,9 +94,12 @@ impl SensorInfo {
             beams: sensor.beams,
             min_feature: (sensor.min_feature > 0.0).then_some(sensor.min_feature),
             min_window: rule.then_some(sensor.min_window),
+            min_pocket: sensor.has_pocket_term().then_some(sensor.min_pocket),
+            pocket_cap: sensor.has_pocket_term().then_some(sensor.pocket_cap),
             window_rule: rule.then(|| sensor.rule()),
             windows_below_rule: rule.then_some(skipped.below_rule),
             windows_below_rule_length: rule.then_some(skipped.below_rule_length),
+            windows_into_small_pockets: sensor.has_pocket_term().then_some(skipped.small_pocket),
         }
     }
 }

@@ -110,9 +110,14 @@ pub fn sweep_dir(
     if !options.footprint.is_point() {
         return Err(ExploreError::RobotInSweep("a footprint (--robot-radius, --footprint)"));
     }
-    if options.beams.is_some() || options.min_feature > 0.0 || options.min_window.is_some() {
+    if options.beams.is_some()
+        || options.min_feature > 0.0
+        || options.min_window.is_some()
+        || options.min_pocket.is_some()
+        || options.pocket_cap != super::explore::DEFAULT_POCKET_CAP
+    {
         return Err(ExploreError::RobotInSweep(
-            "a window rule (--beams, --min-feature, --min-window)",
+            "a window rule (--beams, --min-feature, --min-window, --min-pocket, --pocket-cap)",
         ));
     }
     let map = RosMapOptions { simplify: options.simplify, ..RosMapOptions::default() };

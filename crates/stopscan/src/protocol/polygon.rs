@@ -187,6 +187,13 @@ impl Footprint {
 /// walls, gaps narrower than the robot) are closed without a visit and counted in the run
 /// record as excluded by the rule. With the defaults (no beam count, zero sizes) every window
 /// counts: the paper's model.
+///
+/// The rule has a second term, for **pockets**: unseen space enclosed by what was seen (the
+/// back of a pillar, the hidden face of a desk, wedges between the shadows of two scans),
+/// that is, a hole in the union of the scans' regions. A pocket is no larger than its hole,
+/// obstacle included, so a window part that opens into a hole smaller than `min_pocket`
+/// times the area seen so far, and smaller than `pocket_cap`, cannot hide more than that,
+/// and is not worth a trip. The cap keeps a small room in a large building a room.
 #[derive(Debug, Clone, Copy, Default, PartialEq, Serialize, Deserialize)]
 pub struct Sensor {
     /// The range, metres (`None`: unlimited).
@@ -197,6 +204,13 @@ pub struct Sensor {
     pub min_feature: f64,
     /// The shortest window worth a trip, metres (`--min-window`).
     pub min_window: f64,
+    /// The smallest pocket worth a trip, as a share of the area seen so far (`--min-pocket`;
+    /// 0: every pocket counts).
+    #[serde(default)]
+    pub min_pocket: f64,
+    /// The largest pocket the rule may leave, square metres (`--pocket-cap`).
+    #[serde(default)]
+    pub pocket_cap: f64,
 }
 
 impl Sensor {
@@ -206,9 +220,23 @@ impl Sensor {
         self.min_window.max(self.min_feature).max(beam)
     }
 
+    /// The area below which a pocket enclosed by what was seen is not worth a trip, when
+    /// `seen` square metres have been seen (0 without the pocket term).
+    pub fn pocket_limit(&self, seen: f64) -> f64 {
+        if self.has_pocket_term() { (self.min_pocket * seen).min(self.pocket_cap) } else { 0.0 }
+    }
+
+    /// Whether the rule has its pocket term (a share and a cap above 0).
+    pub fn has_pocket_term(&self) -> bool {
+        self.min_pocket > 0.0 && self.pocket_cap > 0.0
+    }
+
     /// Whether the rule excludes nothing (every window is worth a trip).
     pub fn excludes_nothing(&self) -> bool {
-        self.beams.is_none() && self.min_window <= 0.0 && self.min_feature <= 0.0
+        self.beams.is_none()
+            && self.min_window <= 0.0
+            && self.min_feature <= 0.0
+            && !self.has_pocket_term()
     }
 
     /// The rule in words, for run records.
@@ -223,7 +251,20 @@ impl Sensor {
         if let Some(b) = self.beams {
             terms.push(format!("d·2π/{b} (beam spacing at the window's distance d)"));
         }
-        format!("a window is worth a trip when its length is at least max({})", terms.join(", "))
+        let windows = format!(
+            "a window is worth a trip when its length is at least max({})",
+            terms.join(", ")
+        );
+        if self.has_pocket_term() {
+            format!(
+                "{windows}, and when what lies behind it is not a pocket enclosed by what was \
+                 seen smaller than both {} of the area seen so far (min_pocket) and {} m² \
+                 (pocket_cap)",
+                self.min_pocket, self.pocket_cap
+            )
+        } else {
+            windows
+        }
     }
 }
 

@@ -5,6 +5,7 @@
 use serde::{Deserialize, Serialize};
 
 use crate::algorithm::cover::{self, Intervals};
+use crate::algorithm::region::Region;
 use crate::algorithm::visibility::BoundaryPiece;
 use crate::geometry::segments_distance;
 use crate::kernel::{
@@ -146,6 +147,36 @@ pub(super) struct Known {
     pending: Option<Target>,
     /// Waypoints still to drive, last first.
     route: Vec<Point>,
+    /// The union of the views' regions and its holes, for the sensor rule's pocket term:
+    /// built on demand, and rebuilt from the views after deserialising.
+    #[serde(skip)]
+    seen: Seen,
+}
+
+/// The union of the regions of the first `views` views, its area, and its holes (pockets of
+/// unseen space enclosed by what was seen), each with its bounding box and area.
+#[derive(Debug, Clone, Default)]
+struct Seen {
+    views: usize,
+    union: Region,
+    area: f64,
+    pockets: Vec<Pocket>,
+}
+
+/// A hole of the union of the views' regions.
+#[derive(Debug, Clone)]
+struct Pocket {
+    ring: Vec<Point>,
+    bounds: [Point; 2],
+    area: f64,
+}
+
+impl PartialEq for Seen {
+    /// A cache of the views, which are compared themselves: it takes no part in comparing
+    /// states.
+    fn eq(&self, _: &Self) -> bool {
+        true
+    }
 }
 
 /// A window part closed as out of reach, and points on its near side (beside its middle).
@@ -169,6 +200,10 @@ pub struct Skipped {
     /// view that saw them: none beside the part, and none from where the part is seen, that
     /// the robot can reach inside that view's region, straight or bending around its corners.
     pub out_of_reach: usize,
+    /// Window parts that open into a pocket enclosed by what was seen smaller than the
+    /// sensor rule's `min_pocket` share of the area seen ([`Sensor::min_pocket`]).
+    #[serde(default)]
+    pub small_pocket: usize,
 }
 
 impl View {
@@ -249,6 +284,66 @@ impl Known {
     /// The clearance planned moves keep near view `v` (0 for a point robot).
     fn clearance(&self, v: usize) -> f64 {
         self.footprint.planning_clearance(magnitude(&self.views[v].polygon))
+    }
+
+    /// The area of the pocket just beyond the window part `p q` (on the side away from its
+    /// view's region, which lies left of its windows), with the area seen so far: `Some` when
+    /// the space there is a hole of the union of all views' regions, enclosed by what was
+    /// seen and so no larger than the hole; `None` when it opens onto the unbounded unseen
+    /// space.
+    fn pocket_beyond(&mut self, p: Point, q: Point) -> Option<(f64, f64)> {
+        let n = self.views.len();
+        if self.seen.views < n {
+            let new: Vec<Vec<Point>> =
+                self.views[self.seen.views..].iter().map(|v| v.polygon.clone()).collect();
+            let seen = &mut self.seen;
+            seen.union = seen.union.union(&Region::union_all(&new));
+            seen.views = n;
+            seen.area = seen.union.area();
+            seen.pockets = seen
+                .union
+                .shapes
+                .iter()
+                .flat_map(|s| s.iter().skip(1))
+                .filter(|h| h.len() >= 3)
+                .map(|h| Pocket {
+                    ring: h.clone(),
+                    bounds: cover::bounds_of(h),
+                    area: crate::geometry::signed_area_of(h).abs(),
+                })
+                .collect();
+        }
+        // A thousandth of the part's length beyond its middle.
+        let m = [
+            f64::midpoint(p[0], q[0]) + 1e-3 * (q[1] - p[1]),
+            f64::midpoint(p[1], q[1]) - 1e-3 * (q[0] - p[0]),
+        ];
+        self.seen
+            .pockets
+            .iter()
+            .find(|k| {
+                (k.bounds[0][0]..=k.bounds[1][0]).contains(&m[0])
+                    && (k.bounds[0][1]..=k.bounds[1][1]).contains(&m[1])
+                    && ring_side(&k.ring, m) == RingSide::Inside
+            })
+            .map(|k| (k.area, self.seen.area))
+    }
+
+    /// The sensor rule's pocket term for the open part `gap` (at `pq`) of window `k` of
+    /// `view`: when what lies behind it is enclosed by what was seen and smaller than the
+    /// rule's share of it and its cap, the part is closed and counted, and `true` returned.
+    fn closed_as_pocket(&mut self, view: usize, k: usize, gap: [f64; 2], pq: [Point; 2]) -> bool {
+        if !self.sensor.has_pocket_term() {
+            return false;
+        }
+        match self.pocket_beyond(pq[0], pq[1]) {
+            Some((pocket, seen)) if pocket < self.sensor.pocket_limit(seen) => {
+                self.skipped.small_pocket += 1;
+                self.close(view, k, gap);
+                true
+            }
+            _ => false,
+        }
     }
 
     /// Records a scan, taken at the pending target (inside its view's region, which becomes
@@ -372,10 +467,10 @@ impl Known {
             {
                 self.skipped.below_rule += 1;
                 self.skipped.below_rule_length += len;
-                let w = &mut self.views[view].windows[k];
-                w.covered.push(gap);
-                cover::merge(&mut w.covered);
-                w.ruled.push(gap);
+                self.close(view, k, gap).ruled.push(gap);
+                continue;
+            }
+            if self.closed_as_pocket(view, k, gap, [p, q]) {
                 continue;
             }
             let tm = match self.placement {
@@ -735,9 +830,15 @@ impl Known {
     /// part no point near the window can see (a window grazing an obstacle) must not be
     /// tried again, so every scan makes progress and the exploration ends.
     fn handled(&mut self, t: &Target) {
-        let w = &mut self.views[t.view].windows[t.window];
-        w.covered.push(t.gap);
+        self.close(t.view, t.window, t.gap);
+    }
+
+    /// Counts the part `gap` of window `k` of `view` as covered; returns the window.
+    fn close(&mut self, view: usize, k: usize, gap: [f64; 2]) -> &mut Window {
+        let w = &mut self.views[view].windows[k];
+        w.covered.push(gap);
         cover::merge(&mut w.covered);
+        w
     }
 
     /// Plans a trip from view `from`'s viewpoint along the tree of moves to the view the
@@ -995,6 +1096,72 @@ mod tests {
         k.add(&scan([0.6, 4.0]));
         k.add(&scan([0.6, 16.0]));
         k
+    }
+
+    /// A 10 m square room with a 1 m pillar at its middle, scanned from (1, 1) and (9, 1):
+    /// neither sees the pillar's top face, and their shadows behind it meet in a triangle.
+    /// The sensor rule has the pocket term with a share of 1 (no limit from the share) and
+    /// the given cap.
+    fn pillar_views(cap: f64) -> Known {
+        use crate::algorithm::visibility::Visibility;
+        use crate::geometry::Domain;
+        let room = vec![[0.0, 0.0], [10.0, 0.0], [10.0, 10.0], [0.0, 10.0]];
+        let pillar = vec![[4.5, 4.5], [4.5, 5.5], [5.5, 5.5], [5.5, 4.5]];
+        let vis = Visibility::new(Domain::new(room, vec![pillar]).unwrap()).unwrap();
+        let scan = |at: Point| PolygonObservation { at, region: vis.query(at).unwrap() };
+        let sensor = Sensor { min_pocket: 1.0, pocket_cap: cap, ..Sensor::default() };
+        let mut k = Known::for_robot(&RobotSetup { sensor, ..RobotSetup::default() });
+        k.add(&scan([1.0, 1.0]));
+        k.add(&scan([9.0, 1.0]));
+        k
+    }
+
+    #[test]
+    fn a_pocket_behind_a_pillar_is_measured_and_left_only_below_the_cap() {
+        // The pocket: the pillar and the triangle above it between the rays from (1, 1)
+        // through (4.5, 5.5) and from (9, 1) through (5.5, 5.5), which meet at x = 5.
+        let apex = 5.5 + 0.5 * 4.5 / 3.5;
+        let exact = 1.0 + 0.5 * (apex - 5.5);
+        // Brute force from the definition: grid points of the room seen from neither
+        // viewpoint (every other point of the room is seen by one of them).
+        let k = pillar_views(2.0);
+        let step = 0.005;
+        let mut unseen = 0usize;
+        for i in 0..2000 {
+            for j in 0..2000 {
+                let p = [(f64::from(i) + 0.5) * step, (f64::from(j) + 0.5) * step];
+                if k.views.iter().all(|v| ring_side(&v.polygon, p) == RingSide::Outside) {
+                    unseen += 1;
+                }
+            }
+        }
+        let brute = unseen as f64 * step * step;
+        assert!((brute - exact).abs() < 0.01, "brute force {brute}, by hand {exact}");
+        // Every window part still open leads into that pocket, whose area is measured.
+        let mut k = pillar_views(2.0);
+        let parts: Vec<(usize, usize)> =
+            (0..2).flat_map(|v| (0..k.views[v].windows.len()).map(move |w| (v, w))).collect();
+        let mut open = Vec::new();
+        for &(v, w) in &parts {
+            let mut probe = k.clone();
+            probe.sensor = Sensor::default();
+            if let Some((t, _)) = probe.window_target(v, w) {
+                let [p, q] = probe.gap_of(&t);
+                let (pocket, seen) = k.pocket_beyond(p, q).expect("a pocket behind the part");
+                assert!((pocket - exact).abs() < 1e-6, "pocket {pocket}, by hand {exact}");
+                assert!((seen - (100.0 - exact)).abs() < 1e-6, "seen {seen}");
+                open.push((v, w));
+            }
+        }
+        assert!(!open.is_empty(), "the shadows' edges leave open parts");
+        // Under a cap of 2 m², the parts are closed by the rule, and counted.
+        let closed: Vec<_> = open.iter().filter_map(|&(v, w)| k.window_target(v, w)).collect();
+        assert!(closed.is_empty());
+        assert_eq!(k.skipped.small_pocket, open.len());
+        // Under a cap of 1 m², below the pocket's area, they stay open.
+        let mut k = pillar_views(1.0);
+        assert!(open.iter().all(|&(v, w)| k.window_target(v, w).is_some()));
+        assert_eq!(k.skipped.small_pocket, 0);
     }
 
     /// The targets of every window of every view.
