@@ -188,6 +188,17 @@ fn summary(w: &mut dyn Write, o: &RunRecord) -> std::io::Result<()> {
     for (k, v) in rows {
         t.row(vec![k.into(), v]);
     }
+    // What the sensor rule closed without a visit (with a rule).
+    let sensor = &o.sensor;
+    if let (Some(n), Some(len)) = (sensor.windows_below_rule, sensor.windows_below_rule_length) {
+        t.row(vec![
+            "windows below the rule (count, m)".into(),
+            format!("{n}, {}", num(Some(len), 3)),
+        ]);
+    }
+    if let Some(n) = sensor.windows_into_small_pockets {
+        t.row(vec!["window parts into small pockets".into(), n.to_string()]);
+    }
     if let Some(r) = &o.robot {
         let robot: [(&str, String); 6] = [
             (

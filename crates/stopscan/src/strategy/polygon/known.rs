@@ -292,6 +292,25 @@ impl Known {
     /// seen and so no larger than the hole; `None` when it opens onto the unbounded unseen
     /// space.
     fn pocket_beyond(&mut self, p: Point, q: Point) -> Option<(f64, f64)> {
+        self.update_seen();
+        // A thousandth of the part's length beyond its middle.
+        let m = [
+            f64::midpoint(p[0], q[0]) + 1e-3 * (q[1] - p[1]),
+            f64::midpoint(p[1], q[1]) - 1e-3 * (q[0] - p[0]),
+        ];
+        self.seen
+            .pockets
+            .iter()
+            .find(|k| {
+                (k.bounds[0][0]..=k.bounds[1][0]).contains(&m[0])
+                    && (k.bounds[0][1]..=k.bounds[1][1]).contains(&m[1])
+                    && ring_side(&k.ring, m) == RingSide::Inside
+            })
+            .map(|k| (k.area, self.seen.area))
+    }
+
+    /// Brings the union of the views' regions and its holes up to date with the views.
+    fn update_seen(&mut self) {
         let n = self.views.len();
         if self.seen.views < n {
             let new: Vec<Vec<Point>> =
@@ -313,20 +332,86 @@ impl Known {
                 })
                 .collect();
         }
-        // A thousandth of the part's length beyond its middle.
-        let m = [
-            f64::midpoint(p[0], q[0]) + 1e-3 * (q[1] - p[1]),
-            f64::midpoint(p[1], q[1]) - 1e-3 * (q[0] - p[0]),
-        ];
-        self.seen
-            .pockets
-            .iter()
-            .find(|k| {
-                (k.bounds[0][0]..=k.bounds[1][0]).contains(&m[0])
-                    && (k.bounds[0][1]..=k.bounds[1][1]).contains(&m[1])
-                    && ring_side(&k.ring, m) == RingSide::Inside
+    }
+
+    /// A viewpoint for the part `gap` (at `pq`) of the window `from`–`to` of `view` when none
+    /// is found in the view's own region: from the regions of other views that hold one of
+    /// the points `near` on its near side, nearest viewpoint first (ties to the earlier view;
+    /// the view returned as the anchor), else through the union of all views
+    /// ([`Known::union_point`], no anchor).
+    fn plan_elsewhere(
+        &mut self,
+        view: usize,
+        (from, to, gap): (Point, Point, [f64; 2]),
+        pq: [Point; 2],
+        near: &[Point],
+        c: f64,
+    ) -> Option<(Point, Vec<Point>, Option<usize>)> {
+        let m = [f64::midpoint(pq[0][0], pq[1][0]), f64::midpoint(pq[0][1], pq[1][1])];
+        let mut others: Vec<(f64, usize)> = (0..self.views.len())
+            .filter(|&w| w != view && near.iter().any(|&z| self.inside(w, z)))
+            .map(|w| {
+                let a = self.views[w].at;
+                ((a[0] - m[0]).hypot(a[1] - m[1]), w)
             })
-            .map(|k| (k.area, self.seen.area))
+            .collect();
+        others.sort_by(|x, y| x.0.total_cmp(&y.0).then(x.1.cmp(&y.1)));
+        let cw = |w: usize| self.clearance(w);
+        if let Some((w, (at, via))) = others
+            .into_iter()
+            .find_map(|(_, w)| self.clear_point(w, from, to, gap, cw(w)).map(|x| (w, x)))
+        {
+            return Some((at, via, Some(w)));
+        }
+        self.union_point(view, (from, to, gap), c).map(|(at, via)| (at, via, None))
+    }
+
+    /// A viewpoint for the part `gap` of the window `from`–`to` of `view` that a robot with
+    /// clearance `c` reaches from the view's viewpoint along a path in the union of all
+    /// views' regions (seen free space, from several scans), bending around its corners
+    /// ([`Approach::with_holes`]); `None` if none does. The last resort before a part is
+    /// deferred: a door seen at a slant by every view, through which no single view's region
+    /// leaves room for the robot, while together they do. The union is clipped to a box
+    /// around the viewpoint and the part, grown by a margin, so the search stays local.
+    fn union_point(
+        &mut self,
+        view: usize,
+        (from, to, gap): (Point, Point, [f64; 2]),
+        c: f64,
+    ) -> Option<(Point, Vec<Point>)> {
+        self.update_seen();
+        let v = &self.views[view];
+        let at = v.at;
+        // Only goals in the view's region, from where the robot looks through its window.
+        let beside: Vec<Point> = self
+            .beside_points(from, to, gap, c)
+            .into_iter()
+            .filter(|&z| v.in_bounds(z) && ring_side(&v.polygon, z) == RingSide::Inside)
+            .collect();
+        let g = part_points(from, to, gap);
+        let mid = [f64::midpoint(g[0][0], g[1][0]), f64::midpoint(g[0][1], g[1][1])];
+        let margin = UNION_MARGIN * c;
+        let pts = beside.iter().chain([&at, &mid]);
+        let (mut lo, mut hi) = ([f64::INFINITY; 2], [f64::NEG_INFINITY; 2]);
+        for p in pts {
+            lo = [lo[0].min(p[0]), lo[1].min(p[1])];
+            hi = [hi[0].max(p[0]), hi[1].max(p[1])];
+        }
+        let boxed = Region::polygon(&[
+            [lo[0] - margin, lo[1] - margin],
+            [hi[0] + margin, lo[1] - margin],
+            [hi[0] + margin, hi[1] + margin],
+            [lo[0] - margin, hi[1] + margin],
+        ]);
+        let local = self.seen.union.intersection(&boxed);
+        let shape = local.shapes.iter().find(|s| {
+            s.first().is_some_and(|o| ring_side(o, at) == RingSide::Inside)
+                && s[1..].iter().all(|h| ring_side(h, at) == RingSide::Outside)
+        })?;
+        // Or a corner of the union from where the part is seen across it: in front of a door
+        // too steep and narrow to pass, the robot looks through it.
+        let a = Approach::with_holes(shape, c);
+        self.pass_or_look(&a, at, g, &beside, |z| sees_across(shape, z, mid))
     }
 
     /// The sensor rule's pocket term for the open part `gap` (at `pq`) of window `k` of
@@ -496,28 +581,13 @@ impl Known {
                 if let Some((at, via)) = self.clear_point(view, from, to, gap, c) {
                     return Some((Target { at, via, ..target }, open));
                 }
-                // From the regions of other views that hold the part's near side, nearest
-                // viewpoint first (ties to the earlier view).
-                let m = [f64::midpoint(p[0], q[0]), f64::midpoint(p[1], q[1])];
-                let len = dx.hypot(dy);
-                let near: Vec<Point> = [1.5, 2.5, 4.0]
-                    .into_iter()
-                    .map(|f| [m[0] - f * c * dy / len, m[1] + f * c * dx / len])
-                    .collect();
-                let mut others: Vec<(f64, usize)> = (0..self.views.len())
-                    .filter(|&w| w != view && near.iter().any(|&z| self.inside(w, z)))
-                    .map(|w| {
-                        let a = self.views[w].at;
-                        ((a[0] - m[0]).hypot(a[1] - m[1]), w)
-                    })
-                    .collect();
-                others.sort_by(|x, y| x.0.total_cmp(&y.0).then(x.1.cmp(&y.1)));
-                let cw = |w: usize| self.clearance(w);
-                if let Some((w, (at, via))) = others
-                    .into_iter()
-                    .find_map(|(_, w)| self.clear_point(w, from, to, gap, cw(w)).map(|x| (w, x)))
+                // From the regions of other views that hold the part's near side, or through
+                // the union of all views.
+                let near = near_side(p, q, c);
+                if let Some((at, via, anchor)) =
+                    self.plan_elsewhere(view, (from, to, gap), [p, q], &near, c)
                 {
-                    return Some((Target { at, via, anchor: Some(w), ..target }, open));
+                    return Some((Target { at, via, anchor, ..target }, open));
                 }
                 self.skipped.out_of_reach += 1;
                 self.deferred.push(Deferred { view, window: k, gap, near });
@@ -686,9 +756,57 @@ impl Known {
         if len == 0.0 {
             return None;
         }
+        let beside = self.beside_points(from, to, gap, c);
+        if let Some(&z) = beside.iter().find(|&&z| v.reaches(z) && v.clear(z, c)) {
+            return Some((z, Vec::new()));
+        }
+        let a = Approach::new(&v.polygon, c);
+        let g = part_points(from, to, gap);
+        self.pass_or_look(&a, v.at, g, &beside, |z| self.sees_within(view, z, g))
+    }
+
+    /// Along paths in `a` from `at`: the first of `beside` reached, else a point stepped off
+    /// a corner of `a` near the straight line to the part `g` from where `sees` the part,
+    /// under the widest angle first. A look through the part from a corner must see it under
+    /// a real angle (at least [`MIN_LOOK_ANGLE`]): a corner on the window's own line (behind
+    /// the viewpoint, say) would see nothing new.
+    fn pass_or_look(
+        &self,
+        a: &Approach<'_>,
+        at: Point,
+        g: [Point; 2],
+        beside: &[Point],
+        sees: impl Fn(Point) -> bool,
+    ) -> Option<(Point, Vec<Point>)> {
+        let mid = [f64::midpoint(g[0][0], g[1][0]), f64::midpoint(g[0][1], g[1][1])];
+        let corners = a.corners([at, mid]);
+        if let Some(p) = a.path(at, &corners, beside) {
+            return Some((beside[p.goal], p.via));
+        }
+        let mut looks: Vec<(f64, Point)> = corners
+            .iter()
+            .filter(|&&z| !self.stood_at(z) && sees(z))
+            .map(|&z| (subtended(z, g), z))
+            .filter(|&(angle, _)| angle >= MIN_LOOK_ANGLE)
+            .collect();
+        looks.sort_by(|x, y| y.0.total_cmp(&x.0));
+        let looks: Vec<Point> = looks.into_iter().map(|x| x.1).collect();
+        let p = a.path(at, &corners, &looks)?;
+        Some((looks[p.goal], p.via))
+    }
+
+    /// Points beside the part `gap` of the window `from`–`to`, in order of preference: its
+    /// middle, then quarters and eighths, each stepped 1, 1.5, 2.5 and 4 times `c` off the
+    /// window into its view's region (left of the window); none where a scan was taken.
+    fn beside_points(&self, from: Point, to: Point, gap: [f64; 2], c: f64) -> Vec<Point> {
+        let (dx, dy) = (to[0] - from[0], to[1] - from[1]);
+        let len = dx.hypot(dy);
+        if len == 0.0 {
+            return Vec::new();
+        }
         // The unit normal into the region (left of the window).
         let n = [-dy / len, dx / len];
-        let beside: Vec<Point> = [0.5, 0.25, 0.75, 0.125, 0.375, 0.625, 0.875]
+        [0.5, 0.25, 0.75, 0.125, 0.375, 0.625, 0.875]
             .into_iter()
             .flat_map(|f| {
                 let t = gap[0] + f * (gap[1] - gap[0]);
@@ -698,43 +816,13 @@ impl Known {
                     .map(move |k| [x[0] + k * c * n[0], x[1] + k * c * n[1]])
             })
             .filter(|&z| !self.stood_at(z))
-            .collect();
-        if let Some(&z) = beside.iter().find(|&&z| v.reaches(z) && v.clear(z, c)) {
-            return Some((z, Vec::new()));
-        }
-        let a = Approach::new(&v.polygon, c);
-        let tm = 0.5 * (gap[0] + gap[1]);
-        let mid = [from[0] + tm * dx, from[1] + tm * dy];
-        let corners = a.corners([v.at, mid]);
-        if let Some(p) = a.path(v.at, &corners, &beside) {
-            return Some((beside[p.goal], p.via));
-        }
-        let g = [
-            [from[0] + gap[0] * dx, from[1] + gap[0] * dy],
-            [from[0] + gap[1] * dx, from[1] + gap[1] * dy],
-        ];
-        // A look through the part from a corner must see it under a real angle: a corner on
-        // the window's own line (behind the viewpoint, say) would see nothing new.
-        let mut looks: Vec<(f64, Point)> = corners
-            .iter()
-            .filter(|&&z| !self.stood_at(z) && self.sees_within(view, z, g))
-            .map(|&z| (subtended(z, g), z))
-            .filter(|&(angle, _)| angle >= MIN_LOOK_ANGLE)
-            .collect();
-        looks.sort_by(|x, y| y.0.total_cmp(&x.0));
-        let looks: Vec<Point> = looks.into_iter().map(|x| x.1).collect();
-        let p = a.path(v.at, &corners, &looks)?;
-        Some((looks[p.goal], p.via))
+            .collect()
     }
 
     /// The window segment a target is for, and the part of it (as points) still open.
     pub(super) fn gap_of(&self, t: &Target) -> [Point; 2] {
         let w = &self.views[t.view].windows[t.window];
-        let (dx, dy) = (w.to[0] - w.from[0], w.to[1] - w.from[1]);
-        [
-            [w.from[0] + t.gap[0] * dx, w.from[1] + t.gap[0] * dy],
-            [w.from[0] + t.gap[1] * dx, w.from[1] + t.gap[1] * dy],
-        ]
+        part_points(w.from, w.to, t.gap)
     }
 
     /// Viewpoints for target `t` stepped back from its window into its view's region by each
@@ -1013,6 +1101,10 @@ fn below_rule(sensor: &Sensor, at: Point, p: Point, q: Point) -> Option<f64> {
 /// along it (0 at `from`, 1 at `to`).
 type WindowAt = (usize, usize, f64);
 
+/// How far around the viewpoint and the part [`Known::union_point`] searches the union of
+/// the views' regions, in multiples of the clearance.
+const UNION_MARGIN: f64 = 10.0;
+
 /// How many waypoints ahead [`Known::go_shortcut`] looks for a straight move.
 const SHORTCUT_LOOKAHEAD: usize = 24;
 
@@ -1021,6 +1113,38 @@ const SHORTCUT_LOOKAHEAD: usize = 24;
 /// window's own line sees nothing new. 5° and 10° were tried on willow-full (0.05 m and
 /// 0.1 m cells): coverage moved both ways by up to 2% from map to map, with more scans.
 const MIN_LOOK_ANGLE: f64 = std::f64::consts::PI / 12.0;
+
+/// Points on the near side of the window part `p q` (its view's region lies left of it),
+/// beside its middle at 1.5, 2.5 and 4 times the clearance `c`: where a later view that holds
+/// one may plan a viewpoint for it.
+fn near_side(p: Point, q: Point, c: f64) -> Vec<Point> {
+    let m = [f64::midpoint(p[0], q[0]), f64::midpoint(p[1], q[1])];
+    let (dx, dy) = (q[0] - p[0], q[1] - p[1]);
+    let len = dx.hypot(dy);
+    if len == 0.0 {
+        return vec![m];
+    }
+    [1.5, 2.5, 4.0]
+        .into_iter()
+        .map(|f| [m[0] - f * c * dy / len, m[1] + f * c * dx / len])
+        .collect()
+}
+
+/// The points of the part `gap` (parameters along it) of the window `from`–`to`.
+fn part_points(from: Point, to: Point, gap: [f64; 2]) -> [Point; 2] {
+    let (dx, dy) = (to[0] - from[0], to[1] - from[1]);
+    [[from[0] + gap[0] * dx, from[1] + gap[0] * dy], [from[0] + gap[1] * dx, from[1] + gap[1] * dy]]
+}
+
+/// Whether `z` sees the point `m` on the boundary of the region `shape` (outer ring and
+/// holes) across it: the segment from `z` to a hair short of `m` crosses no edge of any ring.
+fn sees_across(shape: &[Vec<Point>], z: Point, m: Point) -> bool {
+    let m = [m[0] + 1e-6 * (z[0] - m[0]), m[1] + 1e-6 * (z[1] - m[1])];
+    shape.iter().all(|r| {
+        let n = r.len();
+        (0..n).all(|i| !segments_intersect(z, m, r[i], r[(i + 1) % n]))
+    })
+}
 
 /// The angle (radians, in [0, π]) the segment `g` subtends from `z`.
 pub(super) fn subtended(z: Point, g: [Point; 2]) -> f64 {
@@ -1069,6 +1193,11 @@ mod tests {
     /// `door` at 10 ≤ y ≤ 10 + door into a 4 × 5 m room. A 0.4 m robot, windows under 0.4 m
     /// not worth a trip; scans in the corridor at (0.6, 4) and (0.6, 16).
     fn corridor_views(door: f64) -> Known {
+        corridor_views_and_walls(door).0
+    }
+
+    /// [`corridor_views`], with the corridor's and room's boundary ring.
+    fn corridor_views_and_walls(door: f64) -> (Known, Vec<Point>) {
         use crate::algorithm::visibility::Visibility;
         use crate::geometry::Domain;
         let ring = vec![
@@ -1085,7 +1214,7 @@ mod tests {
             [1.2, 20.0],
             [0.0, 20.0],
         ];
-        let vis = Visibility::new(Domain::new(ring, vec![]).unwrap()).unwrap();
+        let vis = Visibility::new(Domain::new(ring.clone(), vec![]).unwrap()).unwrap();
         let scan = |at: Point| PolygonObservation { at, region: vis.query(at).unwrap() };
         let setup = RobotSetup {
             footprint: Footprint::disc(0.2).unwrap(),
@@ -1095,7 +1224,7 @@ mod tests {
         let mut k = Known::for_robot(&setup);
         k.add(&scan([0.6, 4.0]));
         k.add(&scan([0.6, 16.0]));
-        k
+        (k, ring)
     }
 
     /// A 10 m square room with a 1 m pillar at its middle, scanned from (1, 1) and (9, 1):
@@ -1162,6 +1291,44 @@ mod tests {
         let mut k = pillar_views(1.0);
         assert!(open.iter().all(|&(v, w)| k.window_target(v, w).is_some()));
         assert_eq!(k.skipped.small_pocket, 0);
+    }
+
+    #[test]
+    fn paths_through_the_union_of_views_keep_clear_of_the_walls() {
+        // The corridor's two views see the room's door at a slant from both sides. Every
+        // viewpoint planned through the union of their regions is reached along legs that
+        // keep the clearance from the walls themselves, checked from the definition on the
+        // domain, and lies in the region of the view whose window it is for.
+        let (mut k, walls) = corridor_views_and_walls(0.8);
+        let c = k.clearance(0);
+        let mut planned = 0;
+        for v in 0..k.views.len() {
+            for w in 0..k.views[v].windows.len() {
+                let (from, to) = (k.views[v].windows[w].from, k.views[v].windows[w].to);
+                let Some((at, via)) = k.union_point(v, (from, to, [0.0, 1.0]), c) else { continue };
+                planned += 1;
+                assert_eq!(ring_side(&k.views[v].polygon, at), RingSide::Inside);
+                let pts: Vec<Point> =
+                    std::iter::once(k.views[v].at).chain(via).chain([at]).collect();
+                for leg in pts.windows(2) {
+                    for s in 0..=200 {
+                        let t = f64::from(s) / 200.0;
+                        let x = [
+                            leg[0][0] + t * (leg[1][0] - leg[0][0]),
+                            leg[0][1] + t * (leg[1][1] - leg[0][1]),
+                        ];
+                        let n = walls.len();
+                        let d = (0..n)
+                            .map(|i| {
+                                crate::geometry::segment_distance(x, walls[i], walls[(i + 1) % n])
+                            })
+                            .fold(f64::INFINITY, f64::min);
+                        assert!(d >= c - 1e-9, "{x:?} is {d} from a wall: {pts:?}");
+                    }
+                }
+            }
+        }
+        assert!(planned > 0, "no window was planned through the union");
     }
 
     /// The targets of every window of every view.
