@@ -380,23 +380,18 @@ impl Known {
         c: f64,
     ) -> Option<(Point, Vec<Point>)> {
         self.update_seen();
-        let v = &self.views[view];
-        let at = v.at;
+        let at = self.views[view].at;
         // Only goals in the view's region, from where the robot looks through its window.
         let beside: Vec<Point> = self
             .beside_points(from, to, gap, c)
             .into_iter()
-            .filter(|&z| v.in_bounds(z) && ring_side(&v.polygon, z) == RingSide::Inside)
+            .filter(|&z| self.inside(view, z))
             .collect();
         let g = part_points(from, to, gap);
         let mid = [f64::midpoint(g[0][0], g[1][0]), f64::midpoint(g[0][1], g[1][1])];
         let margin = UNION_MARGIN * c;
-        let pts = beside.iter().chain([&at, &mid]);
-        let (mut lo, mut hi) = ([f64::INFINITY; 2], [f64::NEG_INFINITY; 2]);
-        for p in pts {
-            lo = [lo[0].min(p[0]), lo[1].min(p[1])];
-            hi = [hi[0].max(p[0]), hi[1].max(p[1])];
-        }
+        let pts: Vec<Point> = beside.iter().copied().chain([at, mid]).collect();
+        let [lo, hi] = cover::bounds_of(&pts);
         let boxed = Region::polygon(&[
             [lo[0] - margin, lo[1] - margin],
             [hi[0] + margin, lo[1] - margin],
@@ -635,8 +630,8 @@ impl Known {
         {
             return false;
         }
-        let polys: Vec<Vec<Point>> = self.views.iter().map(|v| v.polygon.clone()).collect();
-        let union = crate::algorithm::region::Region::union_all(&polys);
+        self.update_seen();
+        let union = &self.seen.union;
         // The windows (view, index) an edge of the union's boundary lies on, and where.
         let on_windows = |m: Point| -> Vec<WindowAt> {
             let eps = 1e-6 * m[0].abs().max(m[1].abs()).max(1.0);
