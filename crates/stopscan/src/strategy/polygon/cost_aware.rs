@@ -41,6 +41,11 @@
 //!   candidates, where the two estimates agree.
 //! - **Candidates near the part's end nearer the view's viewpoint** (a doorway, from where a
 //!   scan sees the room and the corridor): 13,310 s, and 14,142 s on the other offices.
+//! - **Borrowing another part's candidate** for the soonest part, when it sees across that
+//!   part (12,610 s) or when both parts open into one hole of the union of the views
+//!   (12,361 s, against 12,304 s): on office-2 the shadows of desks against walls stay
+//!   joined to the unseen outside by the wall behind them, so they are not holes, and no
+//!   candidate of one part sees across another's middle.
 //! - Earlier: deferring parts with a small predicted gain, goals the footprint can pass, and
 //!   more steps back (a 1 m step: 13,769 s).
 //!
