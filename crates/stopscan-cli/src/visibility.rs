@@ -146,6 +146,7 @@ pub(crate) fn run(a: &VisibilityArgs, g: &Global) -> anyhow::Result<()> {
                     format!("partial r{}e{}", edge.ring, edge.index)
                 }
                 BoundaryPiece::Window { .. } => "window".into(),
+                BoundaryPiece::Wall { .. } => "wall".into(),
                 BoundaryPiece::Frontier { .. } => "range chord".into(),
             };
             let (f, to) = b.ends();

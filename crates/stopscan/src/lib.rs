@@ -83,6 +83,7 @@ pub mod pipeline;
 pub mod protocol;
 pub mod render;
 pub mod run_record;
+pub mod sensing;
 pub mod sim;
 pub mod strategy;
 pub mod world;

@@ -24,6 +24,7 @@ const LAYERS: &[&str] = &[
     "geometry",
     "algorithm",
     "protocol",
+    "sensing",
     "world",
     "generate",
     "io",

@@ -12,6 +12,7 @@
 
 pub mod corner;
 pub mod grid;
+pub mod laser;
 pub mod polygon;
 
 use serde::{Deserialize, Serialize};

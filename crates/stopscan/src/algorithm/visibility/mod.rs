@@ -61,6 +61,15 @@ pub enum BoundaryPiece {
         /// The far end.
         far: Point,
     },
+    /// A wall seen by a range sensor: a line fitted to its returns
+    /// ([`crate::sensing`](../../sensing/index.html)'s scan ingestion). It names no domain
+    /// edge: a real robot's scan has none.
+    Wall {
+        /// Start.
+        from: Point,
+        /// End.
+        to: Point,
+    },
     /// A chord of the range circle, in a range-limited region made polygonal
     /// ([`range::RangeRegion::to_region`]): the region ends here because of the range, and
     /// the free space may go on beyond.
@@ -79,6 +88,7 @@ impl BoundaryPiece {
             Self::Edge { from, to, .. }
             | Self::Partial { from, to, .. }
             | Self::Window { from, to, .. }
+            | Self::Wall { from, to }
             | Self::Frontier { from, to } => (from, to),
         }
     }
@@ -92,6 +102,7 @@ impl BoundaryPiece {
             Self::Window { from, to, reflex, far } => {
                 Self::Window { from: f(from), to: f(to), reflex: f(reflex), far: f(far) }
             }
+            Self::Wall { from, to } => Self::Wall { from: f(from), to: f(to) },
             Self::Frontier { from, to } => Self::Frontier { from: f(from), to: f(to) },
         }
     }

@@ -230,6 +230,7 @@ pub fn clip(full: &VisibilityRegion, r: f64) -> RangeRegion {
                 let (near, farp) = if d(p0) <= d(p1) { (p0, p1) } else { (p1, p0) };
                 BoundaryPiece::Window { from: p0, to: p1, reflex: near, far: farp }
             }
+            BoundaryPiece::Wall { .. } => BoundaryPiece::Wall { from: p0, to: p1 },
             BoundaryPiece::Frontier { .. } => BoundaryPiece::Frontier { from: p0, to: p1 },
         };
         kept.push((piece, t0 > 0.0, t1 < 1.0));

@@ -98,7 +98,8 @@ pub enum InvalidExploreLiteParams {
 /// - **free** when its closed square lies inside the closed region of some view: its centre is
 ///   inside (scanline fill) and no edge of that region touches it (a supercover of the
 ///   region's edges, grown by a hair so that rounding stays on the safe side);
-/// - **occupied** when a wall piece ([`BoundaryPiece::Edge`] or [`BoundaryPiece::Partial`]) of
+/// - **occupied** when a wall piece ([`BoundaryPiece::Edge`], [`BoundaryPiece::Partial`] or
+///   a scanned [`BoundaryPiece::Wall`]) of
 ///   any view touches it (walls are true obstacles; occupied wins over free);
 /// - **unknown** otherwise, including the cells a window or a range chord runs through, unless
 ///   another view contains them whole (then they are free: no frontier at the seam of two
@@ -600,8 +601,9 @@ impl Raster {
         }
         // Cells a wall touches: occupied.
         for piece in pieces {
-            if let BoundaryPiece::Edge { from, to, .. } | BoundaryPiece::Partial { from, to, .. } =
-                *piece
+            if let BoundaryPiece::Edge { from, to, .. }
+            | BoundaryPiece::Partial { from, to, .. }
+            | BoundaryPiece::Wall { from, to } = *piece
             {
                 supercover(self.res, from, to, eps, |c| {
                     if let Some(j) = self.local(c) {

@@ -51,7 +51,10 @@ pub struct RangeLimited {
 }
 
 fn is_wall(b: &BoundaryPiece) -> bool {
-    matches!(b, BoundaryPiece::Edge { .. } | BoundaryPiece::Partial { .. })
+    matches!(
+        b,
+        BoundaryPiece::Edge { .. } | BoundaryPiece::Partial { .. } | BoundaryPiece::Wall { .. }
+    )
 }
 
 impl RangeLimited {

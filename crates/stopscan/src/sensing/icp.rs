@@ -1,0 +1,411 @@
+//! Point-to-line ICP: aligns a scan's returns to the walls already seen, so that odometry's
+//! drift does not pile up from stop to stop.
+//!
+//! Each iteration pairs every return (placed by the current pose) with the nearest wall
+//! segment within a gate that shrinks from iteration to iteration, when its foot falls on the
+//! segment, and solves the linearised least squares for a small rigid motion about the
+//! robot: minimise `Σ w · (n · (R(dθ)(q − c) + c + d − a))²` (Huber weights `w`). Written here:
+//! no maintained Rust crate does 2D point-to-line ICP.
+//!
+//! **Degenerate geometry.** The normal equations' matrix, with the rotation scaled by the
+//! returns' spread about the robot so that all three axes are in metres, has an eigenvalue
+//! near zero along a motion the walls do not constrain (along a featureless corridor). Only
+//! the well-constrained directions are corrected; along the others the pose stays where
+//! odometry put it, and the result says so. A result with too few pairs, a large residual or
+//! an implausible correction is rejected as a whole: odometry is kept.
+
+use std::collections::HashMap;
+
+use crate::geometry::segment_distance;
+use crate::kernel::Point;
+use crate::protocol::laser::{Pose, wrap};
+
+/// ICP's settings.
+#[derive(Debug, Clone, Copy, PartialEq, serde::Serialize, serde::Deserialize)]
+pub struct IcpParams {
+    /// The pairing gate at the first iteration, metres.
+    pub gate_start: f64,
+    /// The smallest gate, metres (reached by shrinking 30% per iteration).
+    pub gate_end: f64,
+    /// The Huber threshold, metres: residuals beyond it weigh less.
+    pub huber: f64,
+    /// At most this many iterations.
+    pub max_iterations: usize,
+    /// Fewest pairs for a correction.
+    pub min_pairs: usize,
+    /// A direction is degenerate when its eigenvalue is below this share of the largest.
+    pub degenerate_ratio: f64,
+    /// The largest correction accepted: metres.
+    pub max_shift: f64,
+    /// The largest correction accepted: radians.
+    pub max_turn: f64,
+    /// The largest root-mean-square residual accepted, metres.
+    pub max_rms: f64,
+}
+
+impl Default for IcpParams {
+    fn default() -> Self {
+        Self {
+            gate_start: 1.5,
+            gate_end: 0.15,
+            huber: 0.05,
+            max_iterations: 60,
+            min_pairs: 20,
+            degenerate_ratio: 0.02,
+            max_shift: 1.0,
+            max_turn: 20f64.to_radians(),
+            max_rms: 0.1,
+        }
+    }
+}
+
+/// What ICP did.
+#[derive(Debug, Clone, Copy, PartialEq, serde::Serialize, serde::Deserialize)]
+pub struct Alignment {
+    /// The pose it started from (odometry).
+    pub guess: Pose,
+    /// The pose it settled on (the guess when it fell back).
+    pub pose: Pose,
+    /// Pairs of return and wall at the end.
+    pub pairs: usize,
+    /// Their root-mean-square residual, metres.
+    pub rms: f64,
+    /// Iterations run.
+    pub iterations: usize,
+    /// Whether the steps fell below the convergence threshold.
+    pub converged: bool,
+    /// The unconstrained direction of motion (a unit vector in the map frame), when the walls
+    /// left one: the pose was not corrected along it.
+    pub degenerate: Option<Point>,
+    /// Whether the whole correction was rejected and odometry kept (too few pairs, a large
+    /// residual or an implausible correction), and why.
+    pub fallback: Option<Fallback>,
+}
+
+impl Alignment {
+    /// The correction applied: how far the pose moved, metres, and turned, radians.
+    pub fn correction(&self) -> (f64, f64) {
+        (
+            (self.pose.x - self.guess.x).hypot(self.pose.y - self.guess.y),
+            wrap(self.pose.theta - self.guess.theta),
+        )
+    }
+}
+
+/// Why ICP kept odometry.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, serde::Serialize, serde::Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum Fallback {
+    /// Fewer pairs than [`IcpParams::min_pairs`] (nothing known yet, or nothing near).
+    TooFewPairs,
+    /// The residual stayed above [`IcpParams::max_rms`].
+    PoorFit,
+    /// The correction went beyond [`IcpParams::max_shift`] or [`IcpParams::max_turn`].
+    Implausible,
+}
+
+/// The walls seen so far, indexed by a uniform grid for nearest-segment queries.
+#[derive(Debug, Clone, Default)]
+pub struct WallMap {
+    segments: Vec<[Point; 2]>,
+    cells: HashMap<(i64, i64), Vec<u32>>,
+}
+
+/// The wall map's cell side, metres.
+const CELL: f64 = 1.0;
+
+fn cell_of(p: Point) -> (i64, i64) {
+    ((p[0] / CELL).floor() as i64, (p[1] / CELL).floor() as i64)
+}
+
+impl WallMap {
+    /// An empty map.
+    pub fn new() -> Self {
+        Self::default()
+    }
+
+    /// How many segments it holds.
+    pub fn len(&self) -> usize {
+        self.segments.len()
+    }
+
+    /// Whether it holds none.
+    pub fn is_empty(&self) -> bool {
+        self.segments.is_empty()
+    }
+
+    /// Adds wall segments (degenerate and non-finite ones are skipped).
+    pub fn extend(&mut self, walls: &[[Point; 2]]) {
+        for w in walls {
+            let len = (w[1][0] - w[0][0]).hypot(w[1][1] - w[0][1]);
+            if !(len.is_finite() && len > 1e-9) {
+                continue;
+            }
+            let id = self.segments.len() as u32;
+            self.segments.push(*w);
+            let (a, b) = (cell_of(w[0]), cell_of(w[1]));
+            // Every cell the segment's box covers (walls are short, from one scan each).
+            for i in a.0.min(b.0)..=a.0.max(b.0) {
+                for j in a.1.min(b.1)..=a.1.max(b.1) {
+                    if segment_distance(
+                        [(i as f64 + 0.5) * CELL, (j as f64 + 0.5) * CELL],
+                        w[0],
+                        w[1],
+                    ) <= CELL
+                    {
+                        self.cells.entry((i, j)).or_default().push(id);
+                    }
+                }
+            }
+        }
+    }
+
+    /// The nearest segment to `q` within `gate` whose foot from `q` falls inside it: its
+    /// unit normal and a point on it.
+    fn nearest(&self, q: Point, gate: f64) -> Option<(Point, Point, f64)> {
+        let (lo, hi) = (cell_of([q[0] - gate, q[1] - gate]), cell_of([q[0] + gate, q[1] + gate]));
+        let mut best: Option<(Point, Point, f64)> = None;
+        for i in lo.0..=hi.0 {
+            for j in lo.1..=hi.1 {
+                let Some(ids) = self.cells.get(&(i, j)) else { continue };
+                for &id in ids {
+                    let [a, b] = self.segments[id as usize];
+                    let (dx, dy) = (b[0] - a[0], b[1] - a[1]);
+                    let l2 = dx * dx + dy * dy;
+                    let t = ((q[0] - a[0]) * dx + (q[1] - a[1]) * dy) / l2;
+                    if !(0.0..=1.0).contains(&t) {
+                        continue;
+                    }
+                    let l = l2.sqrt();
+                    let n = [-dy / l, dx / l];
+                    let d = ((q[0] - a[0]) * n[0] + (q[1] - a[1]) * n[1]).abs();
+                    if d <= gate && best.is_none_or(|b| d < b.2) {
+                        best = Some((n, a, d));
+                    }
+                }
+            }
+        }
+        best
+    }
+}
+
+/// Aligns `points` (returns in the scanner's frame) to `map`, starting from `guess` (the
+/// scanner's pose by odometry, in the map frame).
+pub fn align(points: &[Point], guess: &Pose, map: &WallMap, params: &IcpParams) -> Alignment {
+    let mut pose = *guess;
+    let mut gate = params.gate_start;
+    let mut out = Alignment {
+        guess: *guess,
+        pose: *guess,
+        pairs: 0,
+        rms: 0.0,
+        iterations: 0,
+        converged: false,
+        degenerate: None,
+        fallback: None,
+    };
+    // The returns' spread about the scanner: the lever that puts rotation in metres.
+    let lever = (points.iter().map(|p| p[0] * p[0] + p[1] * p[1]).sum::<f64>()
+        / points.len().max(1) as f64)
+        .sqrt()
+        .max(1.0);
+    for it in 0..params.max_iterations {
+        out.iterations = it + 1;
+        let c = pose.at();
+        let mut h = [[0.0; 3]; 3];
+        let mut g = [0.0; 3];
+        let (mut pairs, mut sq) = (0usize, 0.0);
+        for p in points {
+            let q = pose.apply(*p);
+            let Some((n, a, _)) = map.nearest(q, gate) else { continue };
+            let r = n[0] * (q[0] - a[0]) + n[1] * (q[1] - a[1]);
+            let w = if r.abs() <= params.huber { 1.0 } else { params.huber / r.abs() };
+            // d(n · q') / d(dx, dy, dθ·lever) at zero.
+            let jac = [n[0], n[1], (n[0] * -(q[1] - c[1]) + n[1] * (q[0] - c[0])) / lever];
+            for (i, hi) in h.iter_mut().enumerate() {
+                for (j, hij) in hi.iter_mut().enumerate() {
+                    *hij += w * jac[i] * jac[j];
+                }
+                g[i] -= w * jac[i] * r;
+            }
+            pairs += 1;
+            sq += r * r;
+        }
+        out.pairs = pairs;
+        out.rms = if pairs > 0 { (sq / pairs as f64).sqrt() } else { 0.0 };
+        if pairs < params.min_pairs {
+            out.fallback = Some(Fallback::TooFewPairs);
+            out.pose = *guess;
+            return out;
+        }
+        // Solve in the well-constrained eigen-directions only.
+        let (vals, vecs) = jacobi_eigen(h);
+        let top = vals.iter().copied().fold(0.0, f64::max);
+        let mut step = [0.0; 3];
+        out.degenerate = None;
+        for k in 0..3 {
+            let v = [vecs[0][k], vecs[1][k], vecs[2][k]];
+            if vals[k] <= params.degenerate_ratio * top {
+                // Unconstrained: report its translation part (the motion odometry keeps).
+                let t = v[0].hypot(v[1]);
+                if t > 0.5 {
+                    out.degenerate = Some([v[0] / t, v[1] / t]);
+                }
+                continue;
+            }
+            let coef = (v[0] * g[0] + v[1] * g[1] + v[2] * g[2]) / vals[k];
+            for i in 0..3 {
+                step[i] += coef * v[i];
+            }
+        }
+        let (dx, dy, dth) = (step[0], step[1], step[2] / lever);
+        // Rotate about the scanner's position, then shift.
+        pose = Pose { x: pose.x + dx, y: pose.y + dy, theta: wrap(pose.theta + dth) };
+        let small = dx.hypot(dy) < 1e-5 && dth.abs() < 1e-6;
+        if small && gate <= params.gate_end {
+            out.converged = true;
+            break;
+        }
+        gate = (gate * 0.7).max(params.gate_end);
+    }
+    out.pose = pose;
+    let (shift, turn) = out.correction();
+    if shift > params.max_shift || turn.abs() > params.max_turn {
+        out.fallback = Some(Fallback::Implausible);
+    } else if out.rms > params.max_rms {
+        out.fallback = Some(Fallback::PoorFit);
+    }
+    if out.fallback.is_some() {
+        out.pose = *guess;
+    }
+    out
+}
+
+/// Eigenvalues and eigenvectors (as columns) of a symmetric 3×3 matrix, by cyclic Jacobi
+/// rotations.
+fn jacobi_eigen(mut a: [[f64; 3]; 3]) -> ([f64; 3], [[f64; 3]; 3]) {
+    let mut v = [[1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [0.0, 0.0, 1.0]];
+    for _ in 0..50 {
+        let off = a[0][1].abs() + a[0][2].abs() + a[1][2].abs();
+        let scale = a[0][0].abs() + a[1][1].abs() + a[2][2].abs();
+        if off <= 1e-15 * scale.max(f64::MIN_POSITIVE) {
+            break;
+        }
+        for (p, q) in [(0, 1), (0, 2), (1, 2)] {
+            if a[p][q].abs() < f64::MIN_POSITIVE {
+                continue;
+            }
+            let theta = (a[q][q] - a[p][p]) / (2.0 * a[p][q]);
+            let t = theta.signum() / (theta.abs() + (theta * theta + 1.0).sqrt());
+            let t = if theta == 0.0 { 1.0 } else { t };
+            let c = 1.0 / (t * t + 1.0).sqrt();
+            let s = t * c;
+            // A ← Jᵀ A J with J the rotation in the (p, q) plane.
+            for k in 0..3 {
+                let (akp, akq) = (a[k][p], a[k][q]);
+                a[k][p] = c * akp - s * akq;
+                a[k][q] = s * akp + c * akq;
+            }
+            for k in 0..3 {
+                let (apk, aqk) = (a[p][k], a[q][k]);
+                a[p][k] = c * apk - s * aqk;
+                a[q][k] = s * apk + c * aqk;
+            }
+            for row in &mut v {
+                let (vp, vq) = (row[p], row[q]);
+                row[p] = c * vp - s * vq;
+                row[q] = s * vp + c * vq;
+            }
+        }
+    }
+    ([a[0][0], a[1][1], a[2][2]], v)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// Returns of a scanner at `truth` on the walls of a room (axis-aligned rectangle with a
+    /// pillar), in the scanner's frame: every `step` metres along each wall it sees.
+    fn room_walls() -> Vec<[Point; 2]> {
+        vec![
+            [[0.0, 0.0], [8.0, 0.0]],
+            [[8.0, 0.0], [8.0, 5.0]],
+            [[8.0, 5.0], [0.0, 5.0]],
+            [[0.0, 5.0], [0.0, 0.0]],
+            [[3.0, 2.0], [4.0, 2.0]],
+            [[4.0, 2.0], [4.0, 3.0]],
+        ]
+    }
+
+    fn sample(walls: &[[Point; 2]], truth: &Pose, step: f64) -> Vec<Point> {
+        let inv = truth.inverse();
+        walls
+            .iter()
+            .flat_map(|w| {
+                let len = (w[1][0] - w[0][0]).hypot(w[1][1] - w[0][1]);
+                let k = (len / step).ceil() as usize;
+                (0..=k).map(move |i| {
+                    let t = i as f64 / k as f64;
+                    [w[0][0] + t * (w[1][0] - w[0][0]), w[0][1] + t * (w[1][1] - w[0][1])]
+                })
+            })
+            .map(|p| inv.apply(p))
+            .collect()
+    }
+
+    #[test]
+    fn the_eigen_decomposition_rebuilds_the_matrix() {
+        let a = [[4.0, 1.0, 0.5], [1.0, 3.0, -0.25], [0.5, -0.25, 0.01]];
+        let (l, v) = jacobi_eigen(a);
+        for i in 0..3 {
+            for j in 0..3 {
+                let r: f64 = (0..3).map(|k| v[i][k] * l[k] * v[j][k]).sum();
+                assert!((r - a[i][j]).abs() < 1e-12, "{i}{j}");
+            }
+        }
+    }
+
+    #[test]
+    fn a_room_is_aligned_from_a_wrong_guess() {
+        let mut map = WallMap::new();
+        map.extend(&room_walls());
+        let truth = Pose { x: 2.0, y: 1.5, theta: 0.4 };
+        let pts = sample(&room_walls(), &truth, 0.05);
+        let guess = Pose { x: 2.25, y: 1.35, theta: 0.4 + 8f64.to_radians() };
+        let a = align(&pts, &guess, &map, &IcpParams::default());
+        assert!(a.converged && a.fallback.is_none() && a.degenerate.is_none(), "{a:?}");
+        assert!((a.pose.x - truth.x).abs() < 1e-6 && (a.pose.y - truth.y).abs() < 1e-6, "{a:?}");
+        assert!((a.pose.theta - truth.theta).abs() < 1e-7, "{a:?}");
+        let (shift, turn) = a.correction();
+        assert!((shift - 0.25f64.hypot(0.15)).abs() < 1e-6);
+        assert!((turn + 8f64.to_radians()).abs() < 1e-7);
+    }
+
+    #[test]
+    fn a_featureless_corridor_keeps_odometry_along_it() {
+        let walls = vec![[[-50.0, 0.0], [50.0, 0.0]], [[50.0, 2.0], [-50.0, 2.0]]];
+        let mut map = WallMap::new();
+        map.extend(&walls);
+        let truth = Pose { x: 0.0, y: 1.0, theta: 0.0 };
+        // Only what a 10 m scanner sees.
+        let near: Vec<[Point; 2]> = vec![[[-10.0, 0.0], [10.0, 0.0]], [[10.0, 2.0], [-10.0, 2.0]]];
+        let pts = sample(&near, &truth, 0.05);
+        let guess = Pose { x: 0.3, y: 1.2, theta: 0.05 };
+        let a = align(&pts, &guess, &map, &IcpParams::default());
+        let d = a.degenerate.expect("the corridor leaves x free");
+        assert!(d[0].abs() > 0.99, "{d:?}");
+        // Across the corridor and in heading, corrected; along it, odometry's x kept.
+        assert!((a.pose.y - 1.0).abs() < 1e-4 && a.pose.theta.abs() < 1e-4, "{a:?}");
+        assert!((a.pose.x - 0.3).abs() < 0.05, "{a:?}");
+    }
+
+    #[test]
+    fn nothing_known_keeps_odometry() {
+        let pts = sample(&room_walls(), &Pose::default(), 0.1);
+        let guess = Pose { x: 1.0, y: 1.0, theta: 0.0 };
+        let a = align(&pts, &guess, &WallMap::new(), &IcpParams::default());
+        assert_eq!(a.fallback, Some(Fallback::TooFewPairs));
+        assert_eq!(a.pose, guess);
+    }
+}

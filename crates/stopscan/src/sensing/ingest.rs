@@ -1,0 +1,643 @@
+//! One laser scan and its pose become the observation strategies consume: a star-shaped
+//! region with labelled walls, windows and range frontiers.
+//!
+//! 1. **Cleaning** (ROS REP 117). A finite range in `[range_min, range_max)` is a return;
+//!    `+inf`, and a finite range at or beyond `range_max`, is no return: open space up to
+//!    `range_max`; `-inf` is an object nearer than `range_min`, taken as a return at
+//!    `range_min`; `NaN` and a finite range below `range_min` are erroneous (dropouts). A
+//!    dropout takes the nearer of its nearest valid neighbours on either side: it claims no
+//!    free space that a neighbour did not see. An isolated return (one beam, both neighbours
+//!    farther by more than the breakpoint threshold and agreeing with each other) is taken as
+//!    spurious (dust, a mixed pixel) and replaced by its neighbours: a feature narrower than
+//!    two beams is below the sensor's resolution.
+//! 2. **Breakpoints** (Borges and Aldon's adaptive breakpoint detector). Neighbouring returns
+//!    `r` and `r'` belong to one surface when `|r − r'| ≤ r · sin Δφ / sin(λ − Δφ) + 3σ`,
+//!    with `Δφ` the beam spacing, `λ` the shallowest incidence a surface is seen at, and `σ`
+//!    the range noise. A break between returns is a **window**, from one end to the other,
+//!    with the nearer end as its occluding corner; a break between a return and no return is
+//!    a window too, out to `range_max`; neighbouring beams without return are joined by
+//!    **range frontiers** (chords at `range_max`).
+//! 3. **Walls** (split-and-merge). Each run of returns on one surface is split recursively at
+//!    the point farthest from the chord of its ends while that distance exceeds the split
+//!    tolerance; each piece gets a least-squares line (orthogonal regression), and
+//!    neighbouring pieces whose joint fit stays within the tolerance are merged again. The
+//!    region's vertices are the runs' ends projected along their beams onto the fitted lines
+//!    and the corners where fitted lines meet.
+//!
+//! Every vertex lies on its beam's ray (a corner, strictly between the rays of its
+//! neighbours), in the order of the beams, so the region is star-shaped from the scanner and
+//! simple; a scanner that does not sweep a full turn adds its own position as a vertex, with
+//! the two sides of the unseen sector as range frontiers.
+
+use crate::algorithm::visibility::{BoundaryPiece, VisibilityRegion};
+use crate::kernel::Point;
+use crate::protocol::laser::{InvalidScan, LaserScan, Pose};
+use crate::protocol::polygon::PolygonObservation;
+
+/// How scans are read: the sensor's noise and the segmentation's thresholds.
+#[derive(Debug, Clone, Copy, PartialEq, serde::Serialize, serde::Deserialize)]
+pub struct IngestParams {
+    /// The range noise σ the breakpoint and split thresholds allow for, metres.
+    pub sigma: f64,
+    /// The breakpoint detector's λ: the shallowest angle between a beam and a surface at
+    /// which neighbouring returns still count as one surface, radians (default 10°).
+    pub lambda: f64,
+    /// Split-and-merge's tolerance: the largest distance of a return from its wall line,
+    /// metres (default `max(3σ, 0.03)`).
+    pub split: f64,
+    /// Whether isolated single-beam returns are removed as spurious.
+    pub despeckle: bool,
+}
+
+impl IngestParams {
+    /// The defaults for a sensor with range noise `sigma`.
+    pub fn for_noise(sigma: f64) -> Self {
+        Self { sigma, lambda: 10f64.to_radians(), split: (3.0 * sigma).max(0.03), despeckle: true }
+    }
+}
+
+impl Default for IngestParams {
+    fn default() -> Self {
+        Self::for_noise(0.02)
+    }
+}
+
+/// What cleaning did to a scan's beams.
+#[derive(Debug, Clone, Copy, Default, PartialEq, Eq, serde::Serialize, serde::Deserialize)]
+pub struct Cleaning {
+    /// Beams in the scan.
+    pub beams: usize,
+    /// Returns used as they came.
+    pub returns: usize,
+    /// Beams without return (`+inf`, or at or beyond `range_max`).
+    pub no_return: usize,
+    /// `-inf` beams, taken as returns at `range_min`.
+    pub too_close: usize,
+    /// `NaN` beams and finite ranges below `range_min`, filled from their neighbours.
+    pub dropouts: usize,
+    /// Isolated returns removed as spurious.
+    pub spurious: usize,
+}
+
+/// A scan read into an observation.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Ingested {
+    /// The region, in the frame the pose is given in.
+    pub observation: PolygonObservation,
+    /// The returns after cleaning, in the same frame (for scan matching).
+    pub points: Vec<Point>,
+    /// The fitted wall segments, in the same frame.
+    pub walls: Vec<[Point; 2]>,
+    /// What cleaning did.
+    pub cleaning: Cleaning,
+}
+
+/// Why a scan could not be read.
+#[derive(Debug, Clone, PartialEq, thiserror::Error)]
+#[non_exhaustive]
+pub enum IngestError {
+    /// The scan's fields are invalid.
+    #[error(transparent)]
+    Scan(#[from] InvalidScan),
+    /// The pose is not finite.
+    #[error("field `pose`: every coordinate must be finite, got {0:?}")]
+    Pose(Pose),
+    /// No beam holds a valid measurement.
+    #[error("field `ranges`: no beam holds a valid measurement (all NaN or below range_min)")]
+    NoValidBeam,
+}
+
+/// A beam after cleaning.
+#[derive(Debug, Clone, Copy, PartialEq)]
+enum Beam {
+    Hit(f64),
+    Open,
+    Unknown,
+}
+
+/// The nearest a vertex may be to the scanner, metres (a return at range 0 would put a
+/// vertex on the viewpoint).
+const MIN_RADIUS: f64 = 1e-3;
+
+/// Reads one scan taken at `pose` (the scanner's pose in the map frame).
+///
+/// # Errors
+/// [`IngestError`]: invalid scan fields (named), a non-finite pose, or no valid beam.
+pub fn ingest(
+    scan: &LaserScan,
+    pose: &Pose,
+    params: &IngestParams,
+) -> Result<Ingested, IngestError> {
+    scan.validate()?;
+    if !pose.is_finite() {
+        return Err(IngestError::Pose(*pose));
+    }
+    let n = scan.ranges.len();
+    let full = scan.is_full_turn();
+    // Beams in counter-clockwise order.
+    let order: Vec<usize> =
+        if scan.angle_increment > 0.0 { (0..n).collect() } else { (0..n).rev().collect() };
+    let angle = |k: usize| scan.angle(order[k]);
+    let mut cleaning = Cleaning { beams: n, ..Cleaning::default() };
+    let mut beams: Vec<Beam> = order
+        .iter()
+        .map(|&i| {
+            let r = scan.ranges[i];
+            if r.is_nan() || (r.is_finite() && r < scan.range_min) {
+                cleaning.dropouts += 1;
+                Beam::Unknown
+            } else if r == f64::NEG_INFINITY {
+                cleaning.too_close += 1;
+                Beam::Hit(scan.range_min.max(MIN_RADIUS))
+            } else if r >= scan.range_max {
+                cleaning.no_return += 1;
+                Beam::Open
+            } else {
+                cleaning.returns += 1;
+                Beam::Hit(r.max(MIN_RADIUS))
+            }
+        })
+        .collect();
+    let range_of = |b: Beam| match b {
+        Beam::Hit(r) => r,
+        _ => scan.range_max,
+    };
+    fill_dropouts(&mut beams, full, range_of)?;
+    let dphi = scan.angle_increment.abs();
+    let gap = |r: f64| r * dphi.sin() / (params.lambda - dphi).sin().max(1e-9) + 3.0 * params.sigma;
+    if params.despeckle {
+        cleaning.spurious = despeckle(&mut beams, full, gap, range_of);
+    }
+    cleaning.returns -= cleaning.spurious.min(cleaning.returns);
+    let dir = |k: usize| {
+        let a = angle(k);
+        [a.cos(), a.sin()]
+    };
+    let point = |k: usize| {
+        let (u, r) = (dir(k), range_of(beams[k]));
+        [r * u[0], r * u[1]]
+    };
+    // Whether beams k and k + 1 (cyclically) are on one surface.
+    let joined = |a: usize, b: usize| match (beams[a], beams[b]) {
+        (Beam::Hit(x), Beam::Hit(y)) => (x - y).abs() <= gap(x.min(y)),
+        _ => false,
+    };
+    // Runs of returns on one surface: [start, end] in beam order (end may wrap past n).
+    let mut runs: Vec<(usize, usize)> = Vec::new();
+    let start = if full {
+        // Start after a break, so no run wraps; a scan all on one surface starts at 0.
+        (0..n).find(|&k| !joined((k + n - 1) % n, k)).unwrap_or(0)
+    } else {
+        0
+    };
+    let mut k = 0;
+    while k < n {
+        let a = (start + k) % n;
+        if !matches!(beams[a], Beam::Hit(_)) {
+            k += 1;
+            continue;
+        }
+        let mut len = 1;
+        while k + len < n && joined((start + k + len - 1) % n, (start + k + len) % n) {
+            len += 1;
+        }
+        runs.push((start + k, start + k + len - 1));
+        k += len;
+    }
+    // Vertices (sensor frame) with the kind of piece that leaves each one.
+    let mut verts: Vec<(Point, Piece)> = Vec::new();
+    let mut walls: Vec<[Point; 2]> = Vec::new();
+    let mut points: Vec<Point> = Vec::new();
+    // A full turn all on one surface closes on itself: its last piece is a wall too.
+    let closed = full && runs.len() == 1 && joined(n - 1, 0) && runs[0] == (start, start + n - 1);
+    let mut run_at = runs.iter().peekable();
+    let mut k = start;
+    while k < start + n {
+        let b = k % n;
+        if let Some(&&(s, e)) = run_at.peek()
+            && s == k
+        {
+            run_at.next();
+            let idx: Vec<usize> = (s..=e).map(|j| j % n).collect();
+            let pts: Vec<Point> = idx.iter().map(|&j| point(j)).collect();
+            points.extend(&pts);
+            let vs = fit_run(&pts, &idx.iter().map(|&j| dir(j)).collect::<Vec<_>>(), params);
+            let last = vs.len() - 1;
+            for (i, v) in vs.iter().enumerate() {
+                verts.push((*v, if i < last || closed { Piece::Wall } else { Piece::Break }));
+                if i < last {
+                    walls.push([*v, vs[i + 1]]);
+                } else if closed {
+                    walls.push([*v, vs[0]]);
+                }
+            }
+            k = e + 1;
+            continue;
+        }
+        // A beam without return: a range frontier to the next beam if it has none either.
+        let next_open = k + 1 < start + n || full;
+        let kind = if next_open && beams[b] == Beam::Open && beams[(b + 1) % n] == Beam::Open {
+            Piece::Frontier
+        } else {
+            Piece::Break
+        };
+        verts.push((point(b), kind));
+        k += 1;
+    }
+    if !full {
+        // The unseen sector: back to the scanner and out again, as range frontiers.
+        if let Some(l) = verts.last_mut() {
+            l.1 = Piece::Frontier;
+        }
+        verts.push(([0.0, 0.0], Piece::Frontier));
+    }
+    let to_map = |p: Point| pose.apply(p);
+    let at = pose.at();
+    let polygon: Vec<Point> = verts.iter().map(|v| to_map(v.0)).collect();
+    let m = polygon.len();
+    let boundary = (0..m)
+        .map(|i| {
+            let (from, to) = (polygon[i], polygon[(i + 1) % m]);
+            match verts[i].1 {
+                Piece::Wall => BoundaryPiece::Wall { from, to },
+                Piece::Frontier => BoundaryPiece::Frontier { from, to },
+                Piece::Break => {
+                    let d = |p: Point| (p[0] - at[0]).hypot(p[1] - at[1]);
+                    let (reflex, far) = if d(from) <= d(to) { (from, to) } else { (to, from) };
+                    BoundaryPiece::Window { from, to, reflex, far }
+                }
+            }
+        })
+        .collect();
+    Ok(Ingested {
+        observation: PolygonObservation {
+            at,
+            region: VisibilityRegion { viewpoint: at, polygon, boundary },
+        },
+        points: points.into_iter().map(to_map).collect(),
+        walls: walls.into_iter().map(|w| [to_map(w[0]), to_map(w[1])]).collect(),
+        cleaning,
+    })
+}
+
+/// The piece that leaves a vertex.
+#[derive(Debug, Clone, Copy, PartialEq)]
+enum Piece {
+    Wall,
+    Frontier,
+    Break,
+}
+
+/// Fills each dropout with the nearer of its nearest valid neighbours on either side (one
+/// side only at the ends of a scan that is not a full turn).
+fn fill_dropouts(
+    beams: &mut [Beam],
+    full: bool,
+    range_of: impl Fn(Beam) -> f64,
+) -> Result<(), IngestError> {
+    let n = beams.len();
+    if beams.iter().all(|b| *b == Beam::Unknown) {
+        return Err(IngestError::NoValidBeam);
+    }
+    let src = beams.to_vec();
+    let find = |k: usize, step: isize| -> Option<Beam> {
+        let mut j = k as isize;
+        for _ in 0..n {
+            j += step;
+            if !full && (j < 0 || j >= n as isize) {
+                return None;
+            }
+            let b = src[j.rem_euclid(n as isize) as usize];
+            if b != Beam::Unknown {
+                return Some(b);
+            }
+        }
+        None
+    };
+    for k in 0..n {
+        if src[k] == Beam::Unknown {
+            let (l, r) = (find(k, -1), find(k, 1));
+            beams[k] = match (l, r) {
+                (Some(a), Some(b)) => {
+                    if range_of(a) <= range_of(b) {
+                        a
+                    } else {
+                        b
+                    }
+                }
+                (Some(a), None) | (None, Some(a)) => a,
+                (None, None) => unreachable!("some beam is valid"),
+            };
+        }
+    }
+    Ok(())
+}
+
+/// Replaces isolated returns (both neighbours farther by more than `gap` and agreeing with
+/// each other) by the nearer neighbour; returns how many.
+fn despeckle(
+    beams: &mut [Beam],
+    full: bool,
+    gap: impl Fn(f64) -> f64,
+    range_of: impl Fn(Beam) -> f64,
+) -> usize {
+    let n = beams.len();
+    let src = beams.to_vec();
+    let mut count = 0;
+    for k in 0..n {
+        if !full && (k == 0 || k == n - 1) {
+            continue;
+        }
+        let Beam::Hit(r) = src[k] else { continue };
+        let (a, b) = (src[(k + n - 1) % n], src[(k + 1) % n]);
+        let (ra, rb) = (range_of(a), range_of(b));
+        let g = gap(r);
+        if ra > r + g && rb > r + g && (ra - rb).abs() <= gap(ra.min(rb)) {
+            beams[k] = if ra <= rb { a } else { b };
+            count += 1;
+        }
+    }
+    count
+}
+
+/// Split-and-merge over one run of returns `pts` (on the rays `dirs`): the run's vertices,
+/// its ends projected along their rays onto the fitted lines and corners where lines meet.
+fn fit_run(pts: &[Point], dirs: &[Point], params: &IngestParams) -> Vec<Point> {
+    let n = pts.len();
+    if n == 1 {
+        return vec![pts[0]];
+    }
+    // Split.
+    let mut cuts = vec![0, n - 1];
+    let mut stack = vec![(0, n - 1)];
+    while let Some((a, b)) = stack.pop() {
+        if b <= a + 1 {
+            continue;
+        }
+        let (p, q) = (pts[a], pts[b]);
+        let far = (a + 1..b)
+            .map(|i| (i, crate::geometry::segment_distance(pts[i], p, q)))
+            .fold((a, -1.0), |m, x| if x.1 > m.1 { x } else { m });
+        if far.1 > params.split {
+            cuts.push(far.0);
+            stack.push((a, far.0));
+            stack.push((far.0, b));
+        }
+    }
+    cuts.sort_unstable();
+    // Merge neighbours whose joint fit stays within the tolerance.
+    let mut i = 1;
+    while i + 1 < cuts.len() {
+        let (a, b) = (cuts[i - 1], cuts[i + 1]);
+        let line = fit_line(&pts[a..=b]);
+        if pts[a..=b].iter().all(|p| line.distance(*p) <= params.split) {
+            cuts.remove(i);
+        } else {
+            i += 1;
+        }
+    }
+    let lines: Vec<Line> = cuts.windows(2).map(|w| fit_line(&pts[w[0]..=w[1]])).collect();
+    let tol = (4.0 * params.sigma).max(params.split);
+    let onto = |k: usize, l: &Line| l.along_ray(dirs[k], pts[k], tol).unwrap_or(pts[k]);
+    let mut out = vec![onto(0, &lines[0])];
+    for (j, &c) in cuts.iter().enumerate().skip(1).take(cuts.len() - 2) {
+        let (l0, l1) = (&lines[j - 1], &lines[j]);
+        let corner = l0.meet(l1).filter(|x| {
+            let d = (x[0] - pts[c][0]).hypot(x[1] - pts[c][1]);
+            d <= tol && strictly_between(dirs[c - 1], *x, dirs[c + 1])
+        });
+        out.push(corner.unwrap_or_else(|| {
+            let (a, b) = (onto(c, l0), onto(c, l1));
+            [0.5 * (a[0] + b[0]), 0.5 * (a[1] + b[1])]
+        }));
+    }
+    out.push(onto(n - 1, &lines[lines.len() - 1]));
+    out
+}
+
+/// Whether the direction of `x` lies strictly between the directions `a` and `b`
+/// (counter-clockwise from `a`, less than a half turn).
+fn strictly_between(a: Point, x: Point, b: Point) -> bool {
+    let cross = |u: Point, v: Point| u[0] * v[1] - u[1] * v[0];
+    cross(a, x) > 0.0 && cross(x, b) > 0.0
+}
+
+/// A line `normal · p = offset` with a unit normal.
+#[derive(Debug, Clone, Copy)]
+struct Line {
+    normal: Point,
+    offset: f64,
+}
+
+impl Line {
+    fn distance(&self, p: Point) -> f64 {
+        (self.normal[0] * p[0] + self.normal[1] * p[1] - self.offset).abs()
+    }
+
+    /// Where the ray from the origin along `dir` meets the line, if it does ahead and within
+    /// `tol` of the measured point `p`.
+    fn along_ray(&self, dir: Point, p: Point, tol: f64) -> Option<Point> {
+        let c = self.normal[0] * dir[0] + self.normal[1] * dir[1];
+        if c.abs() < 1e-9 {
+            return None;
+        }
+        let t = self.offset / c;
+        let x = [t * dir[0], t * dir[1]];
+        (t > MIN_RADIUS && (x[0] - p[0]).hypot(x[1] - p[1]) <= tol).then_some(x)
+    }
+
+    /// Where two lines meet, unless they are nearly parallel.
+    fn meet(&self, o: &Line) -> Option<Point> {
+        let det = self.normal[0] * o.normal[1] - self.normal[1] * o.normal[0];
+        if det.abs() < 1e-6 {
+            return None;
+        }
+        Some([
+            (self.offset * o.normal[1] - self.normal[1] * o.offset) / det,
+            (self.normal[0] * o.offset - self.offset * o.normal[0]) / det,
+        ])
+    }
+}
+
+/// The least-squares line through `pts` (orthogonal regression: the normal is the direction
+/// of least spread about the centroid).
+fn fit_line(pts: &[Point]) -> Line {
+    let n = pts.len() as f64;
+    let (cx, cy) = pts.iter().fold((0.0, 0.0), |s, p| (s.0 + p[0], s.1 + p[1]));
+    let (cx, cy) = (cx / n, cy / n);
+    let (mut sxx, mut syy, mut sxy) = (0.0, 0.0, 0.0);
+    for p in pts {
+        let (dx, dy) = (p[0] - cx, p[1] - cy);
+        sxx += dx * dx;
+        syy += dy * dy;
+        sxy += dx * dy;
+    }
+    // The direction of most spread is at angle ½·atan2(2sxy, sxx − syy); the normal is across.
+    let a = 0.5 * (2.0 * sxy).atan2(sxx - syy);
+    let normal = [-a.sin(), a.cos()];
+    Line { normal, offset: normal[0] * cx + normal[1] * cy }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use std::f64::consts::{PI, TAU};
+
+    /// A full-turn scan of `n` beams from `angle_min = -π`, with `f(angle)` as the range.
+    fn turn(n: usize, f: impl Fn(f64) -> f64) -> LaserScan {
+        let inc = TAU / n as f64;
+        LaserScan {
+            angle_min: -PI,
+            angle_increment: inc,
+            range_min: 0.05,
+            range_max: 20.0,
+            ranges: (0..n).map(|i| f(-PI + i as f64 * inc)).collect(),
+        }
+    }
+
+    /// The range from the origin to the axis-aligned square of half side `h` around it.
+    fn square(h: f64) -> impl Fn(f64) -> f64 {
+        move |a: f64| h / a.cos().abs().max(a.sin().abs())
+    }
+
+    fn area(p: &[Point]) -> f64 {
+        crate::geometry::signed_area_of(p)
+    }
+
+    #[test]
+    fn a_square_room_becomes_four_walls_with_its_corners() {
+        let s = turn(720, square(2.0));
+        let g = ingest(&s, &Pose::default(), &IngestParams::for_noise(0.0)).unwrap();
+        let r = &g.observation.region;
+        assert!(r.boundary.iter().all(|b| matches!(b, BoundaryPiece::Wall { .. })));
+        assert!((area(&r.polygon) - 16.0).abs() < 1e-6, "{}", area(&r.polygon));
+        // Four corners at (±2, ±2), and vertices only where the walls meet or a run starts.
+        for c in [[2.0, 2.0], [-2.0, 2.0], [-2.0, -2.0], [2.0, -2.0]] {
+            assert!(
+                r.polygon.iter().any(|p| (p[0] - c[0]).hypot(p[1] - c[1]) < 1e-6),
+                "corner {c:?} missing from {:?}",
+                r.polygon
+            );
+        }
+        assert!(r.polygon.len() <= 6, "{:?}", r.polygon);
+        assert_eq!(g.cleaning.returns, 720);
+    }
+
+    #[test]
+    fn rep117_cleaning_fills_dropouts_from_the_nearer_neighbour() {
+        let mut s = turn(360, square(2.0));
+        s.ranges[10] = f64::NAN;
+        s.ranges[11] = 0.01; // below range_min: erroneous
+        for r in &mut s.ranges[100..103] {
+            *r = f64::NEG_INFINITY;
+        }
+        s.ranges[200] = 25.0; // beyond range_max: no return
+        let g = ingest(&s, &Pose::default(), &IngestParams::for_noise(0.0)).unwrap();
+        let c = g.cleaning;
+        assert_eq!((c.dropouts, c.too_close, c.no_return), (2, 3, 1));
+        // The dropouts lie on a wall: no window there.
+        let r = &g.observation.region;
+        let windows =
+            r.boundary.iter().filter(|b| matches!(b, BoundaryPiece::Window { .. })).count();
+        // The too-close returns and the beam without return each break the wall twice.
+        assert_eq!(windows, 4, "{:?}", r.boundary);
+        // The too-close beam stands at range_min.
+        assert!(r.polygon.iter().any(|p| (p[0].hypot(p[1]) - 0.05).abs() < 1e-4));
+        // The beam without return reaches range_max, between two windows (frontier-less).
+        assert!(r.polygon.iter().any(|p| (p[0].hypot(p[1]) - 20.0).abs() < 1e-9));
+    }
+
+    #[test]
+    fn a_spurious_return_is_removed_and_a_real_step_is_a_window() {
+        let mut s = turn(720, square(3.0));
+        s.ranges[50] = 1.0;
+        let g = ingest(&s, &Pose::default(), &IngestParams::for_noise(0.02)).unwrap();
+        assert_eq!(g.cleaning.spurious, 1);
+        assert!((area(&g.observation.region.polygon) - 36.0).abs() < 0.05);
+        // A doorway: beams 300..320 see 3 m farther.
+        let mut s = turn(720, square(3.0));
+        for r in &mut s.ranges[300..320] {
+            *r += 3.0;
+        }
+        let g = ingest(&s, &Pose::default(), &IngestParams::for_noise(0.02)).unwrap();
+        let ws: Vec<_> = g
+            .observation
+            .region
+            .boundary
+            .iter()
+            .filter_map(|b| match b {
+                BoundaryPiece::Window { reflex, far, .. } => Some((*reflex, *far)),
+                _ => None,
+            })
+            .collect();
+        assert_eq!(ws.len(), 2);
+        for (reflex, far) in ws {
+            assert!(reflex[0].hypot(reflex[1]) < far[0].hypot(far[1]));
+            assert!((far[0].hypot(far[1]) - reflex[0].hypot(reflex[1]) - 3.0).abs() < 0.1);
+        }
+    }
+
+    #[test]
+    fn open_space_gives_range_frontiers_and_a_partial_turn_closes_at_the_scanner() {
+        // A 270° scanner facing a wall 2 m ahead (+x), open elsewhere.
+        let n = 541;
+        let inc = 1.5 * PI / (n - 1) as f64;
+        let s = LaserScan {
+            angle_min: -0.75 * PI,
+            angle_increment: inc,
+            range_min: 0.05,
+            range_max: 10.0,
+            ranges: (0..n)
+                .map(|i| {
+                    let a = -0.75 * PI + i as f64 * inc;
+                    if a.cos() > 0.5 { 2.0 / a.cos() } else { f64::INFINITY }
+                })
+                .collect(),
+        };
+        let pose = Pose { x: 5.0, y: -1.0, theta: 0.3 };
+        let g = ingest(&s, &pose, &IngestParams::for_noise(0.0)).unwrap();
+        let r = &g.observation.region;
+        assert!(r.polygon.contains(&[5.0, -1.0]), "the scanner is a vertex");
+        assert_eq!(g.observation.at, [5.0, -1.0]);
+        let kinds = |f: fn(&BoundaryPiece) -> bool| r.boundary.iter().filter(|b| f(b)).count();
+        assert_eq!(kinds(|b| matches!(b, BoundaryPiece::Wall { .. })), 1);
+        assert_eq!(kinds(|b| matches!(b, BoundaryPiece::Window { .. })), 2);
+        assert!(kinds(|b| matches!(b, BoundaryPiece::Frontier { .. })) > 100);
+        assert!(area(&r.polygon) > 0.0, "counter-clockwise");
+        // The wall lies 2 m ahead along the heading.
+        let w = g.walls[0];
+        let ahead = |p: Point| (p[0] - 5.0) * 0.3f64.cos() + (p[1] + 1.0) * 0.3f64.sin();
+        assert!((ahead(w[0]) - 2.0).abs() < 1e-6 && (ahead(w[1]) - 2.0).abs() < 1e-6);
+    }
+
+    #[test]
+    fn a_clockwise_scanner_gives_the_same_region() {
+        let ccw = turn(360, square(2.5));
+        let mut cw = ccw.clone();
+        cw.angle_min = ccw.angle(359);
+        cw.angle_increment = -ccw.angle_increment;
+        cw.ranges.reverse();
+        let p = IngestParams::for_noise(0.0);
+        let (a, b) = (
+            ingest(&ccw, &Pose::default(), &p).unwrap(),
+            ingest(&cw, &Pose::default(), &p).unwrap(),
+        );
+        assert!(
+            (area(&a.observation.region.polygon) - area(&b.observation.region.polygon)).abs()
+                < 1e-9
+        );
+    }
+
+    #[test]
+    fn bad_scans_are_refused_with_the_field() {
+        let mut s = turn(360, square(2.0));
+        s.ranges = vec![f64::NAN; 360];
+        assert_eq!(
+            ingest(&s, &Pose::default(), &IngestParams::default()),
+            Err(IngestError::NoValidBeam)
+        );
+        let s = turn(360, square(2.0));
+        let e = ingest(&s, &Pose { x: f64::NAN, y: 0.0, theta: 0.0 }, &IngestParams::default());
+        assert!(e.unwrap_err().to_string().contains("pose"));
+    }
+}

@@ -1,0 +1,9 @@
+//! From a real robot's raw sensor data to the observations strategies consume.
+//!
+//! - [`ingest`]: one laser scan and its pose become a star-shaped region with labelled walls,
+//!   windows and range frontiers (REP 117 cleaning, adaptive breakpoints, split-and-merge);
+//! - [`icp`]: point-to-line ICP that aligns a scan to the walls already seen, with a test for
+//!   degenerate geometry (a featureless corridor) that falls back to odometry.
+
+pub mod icp;
+pub mod ingest;
