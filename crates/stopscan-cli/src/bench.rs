@@ -45,12 +45,10 @@ pub(crate) fn run(a: &BenchArgs, g: &Global) -> anyhow::Result<()> {
         BenchTarget::Explore => return bench_explore(a, g),
         BenchTarget::Roi => return bench_roi(a, g),
         BenchTarget::Floors => return bench_floors(a, g),
+        BenchTarget::Scans => return bench_scans(a, g),
         _ => {}
     }
     let (name, n, secs, ops) = match a.target {
-        BenchTarget::Visibility | BenchTarget::Explore | BenchTarget::Roi | BenchTarget::Floors => {
-            unreachable!("handled above")
-        }
         BenchTarget::Mdp => {
             let general = a.solver == SolverArg::General;
             let n = a.n.unwrap_or(if general { 180 } else { 900 });
@@ -130,6 +128,7 @@ pub(crate) fn run(a: &BenchArgs, g: &Global) -> anyhow::Result<()> {
                 1.0,
             )
         }
+        _ => unreachable!("handled above"),
     };
     let value = json!({"name": name, "n": n, "seconds_median": secs, "per_second": ops / secs, "repeat": a.repeat});
     emit(g, &value, true, |w| writeln!(w, "{}", serde_json::to_string(&value).unwrap_or_default()))
@@ -257,6 +256,41 @@ fn bench_explore(a: &BenchArgs, g: &Global) -> anyhow::Result<()> {
         "runs_failing_checks": failing.len(), "failing": details,
     });
     emit(g, &value, true, |w| writeln!(w, "{}", serde_json::to_string(&value).unwrap_or_default()))
+}
+
+fn bench_scans(a: &BenchArgs, g: &Global) -> anyhow::Result<()> {
+    let n = a.n.unwrap_or(1000);
+    if n > 100_000 {
+        bail!("--n (scan pairs) must be at most 100000 for scans, got {n}");
+    }
+    let (name, domain) = if let Some(path) = &a.env {
+        let env = stopscan::io::read_environment(path)?;
+        (path.display().to_string(), env.domain)
+    } else {
+        let text = stopscan::pipeline::explore::OFFICE_GEOJSON;
+        let env = stopscan::io::text_formats::parse_geojson(text, "built-in office floor")?;
+        ("office (built-in)".to_string(), env.domain)
+    };
+    let lidar = stopscan::world::lidar::Lidar::default();
+    let t = Instant::now();
+    let r = stopscan::experiment::scans::scan_pairs(
+        &domain,
+        &lidar,
+        n,
+        3.0,
+        0.3,
+        10f64.to_radians(),
+        g.seed,
+    );
+    let value = json!({
+        "name": "raw-scans", "environment": name, "lidar": lidar, "seed": g.seed,
+        "pairs_within_m": 3.0, "initial_error": {"shift_m": 0.3, "turn_deg": 10.0},
+        "converged_when": {"shift_m": stopscan::experiment::scans::CONVERGED_SHIFT, "turn_deg": 1.0},
+        "result": r, "seconds": t.elapsed().as_secs_f64(),
+    });
+    emit(g, &value, true, |w| {
+        writeln!(w, "{}", serde_json::to_string_pretty(&value).unwrap_or_default())
+    })
 }
 
 fn bench_roi(a: &BenchArgs, g: &Global) -> anyhow::Result<()> {

@@ -65,6 +65,8 @@ fn options(a: &ExploreArgs, g: &Global) -> anyhow::Result<ExploreOptions> {
         seed: g.seed,
         trace: a.trace.clone(),
         simplify: a.simplify,
+        lidar: a.sensor,
+        odometry_drift: a.odometry_drift,
     })
 }
 

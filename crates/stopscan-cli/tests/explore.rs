@@ -341,3 +341,69 @@ fn footprint_flags_are_checked() {
         &["turtlebot3_world.yaml", "fits nowhere"],
     );
 }
+
+#[test]
+fn raw_scans_from_a_simulated_lidar() {
+    let map = common::fixture("ros-maps/turtlebot3_world.yaml");
+    let dir = temp("raw-scans");
+    std::fs::create_dir_all(&dir).unwrap();
+    let out = dir.join("run.json");
+    let run = |seed: &str| {
+        let args = [
+            "--seed",
+            seed,
+            "explore",
+            "--env",
+            &map,
+            "--robot-radius",
+            "0.2",
+            "--sensor",
+            "lidar:beams=360,sigma=0.01,dropout=0.02",
+            "--odometry-drift",
+            "0.01",
+            "--out",
+            out.to_str().unwrap(),
+        ];
+        let r = json(&args);
+        (r, std::fs::read(&out).unwrap())
+    };
+    let (r, bytes) = run("5");
+    let raw = &r["raw_scans"];
+    assert_eq!(raw["lidar"]["beams"], 360);
+    assert_eq!(f(&raw["lidar"], "dropout"), 0.02);
+    assert_eq!(f(raw, "odometry_drift"), 0.01);
+    assert_eq!(
+        raw["stops"].as_array().unwrap().len() as u64,
+        r["metrics"]["scans"].as_u64().unwrap()
+    );
+    assert!(raw["cleaning"]["dropouts"].as_u64().unwrap() > 0, "{raw}");
+    // The sensor's range and beams are the lidar's; the record measures the ground truth.
+    assert_eq!(f(&r["sensor"], "range"), 20.0);
+    assert_eq!(r["sensor"]["beams"], 360);
+    assert!(f(&r["robot"], "coverage_of_reachable") > 0.99, "{r}");
+    // Byte-identical for the same seed.
+    assert_eq!(run("5").1, bytes);
+}
+
+#[test]
+fn raw_scan_flags_are_checked() {
+    let map = common::fixture("office.geojson");
+    fails(&["explore", "--env", &map, "--sensor", "camera"], &["--sensor", "lidar"]);
+    fails(&["explore", "--env", &map, "--sensor", "lidar:beams=4"], &["--sensor", "beams"]);
+    fails(&["explore", "--env", &map, "--sensor", "lidar:sigma=x"], &["--sensor", "sigma"]);
+    fails(&["explore", "--env", &map, "--sensor", "lidar:fov=2"], &["--sensor", "fov"]);
+    fails(
+        &["explore", "--env", &map, "--odometry-drift", "0.01"],
+        &["--odometry-drift", "--sensor"],
+    );
+    fails(
+        &["explore", "--env", &map, "--sensor", "lidar", "--odometry-drift", "0.9"],
+        &["--odometry-drift", "0.9"],
+    );
+    fails(
+        &["explore", "--env", &map, "--sensor", "lidar", "--range", "8"],
+        &["--range", "lidar's max"],
+    );
+    let dir = common::fixture("ros-maps");
+    fails(&["explore", "--env", &dir, "--sensor", "lidar"], &["raw scans", "one environment"]);
+}

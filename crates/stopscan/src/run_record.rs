@@ -104,6 +104,87 @@ impl SensorInfo {
     }
 }
 
+/// `"raw_scans"`: a run driven from simulated laser scans (`explore --sensor lidar`): the
+/// lidar, the odometry's drift, how the strategies' footprint was grown for the pose error,
+/// and every stop's true and believed pose. The record's metrics measure the ground truth: the
+/// exact regions seen from where the scans were truly taken, along the path truly driven.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct RawScanInfo {
+    /// The lidar model.
+    pub lidar: crate::world::lidar::Lidar,
+    /// Odometry's drift (position error per metre, per axis; a tenth of it in radians of
+    /// heading per metre).
+    pub odometry_drift: f64,
+    /// The seed of the lidar's noise and the drift.
+    pub seed: u64,
+    /// How much the strategies' planning clearance was grown over the robot's, metres.
+    pub planning_margin: f64,
+    /// How scans were read and aligned.
+    pub ingest: crate::sensing::ingest::IngestParams,
+    /// ICP's settings.
+    pub icp: crate::sensing::icp::IcpParams,
+    /// The largest position error at a stop after ICP, metres.
+    pub max_position_error: f64,
+    /// The mean position error at the stops, metres.
+    pub mean_position_error: f64,
+    /// The largest heading error at a stop after ICP, radians.
+    pub max_heading_error: f64,
+    /// Stops where ICP kept odometry (too few pairs, a poor fit or an implausible correction).
+    pub icp_fallbacks: usize,
+    /// Stops where the walls left a direction unconstrained (odometry kept along it).
+    pub icp_degenerate: usize,
+    /// Beams in all scans, and what cleaning did to them.
+    pub cleaning: crate::sensing::ingest::Cleaning,
+    /// Every stop, in order.
+    pub stops: Vec<crate::sim::lidar::Stop>,
+}
+
+impl RawScanInfo {
+    /// The summary of a raw-scan run.
+    pub fn of(
+        run: &crate::sim::lidar::LidarRun,
+        setup: &crate::sim::lidar::LidarSetup,
+        planning_margin: f64,
+    ) -> Self {
+        let stops = &run.stops;
+        let mut cleaning = crate::sensing::ingest::Cleaning::default();
+        for s in stops {
+            let c = &s.cleaning;
+            cleaning.beams += c.beams;
+            cleaning.returns += c.returns;
+            cleaning.no_return += c.no_return;
+            cleaning.too_close += c.too_close;
+            cleaning.dropouts += c.dropouts;
+            cleaning.spurious += c.spurious;
+        }
+        Self {
+            lidar: setup.lidar,
+            odometry_drift: setup.drift,
+            seed: setup.seed,
+            planning_margin,
+            ingest: setup.ingest,
+            icp: setup.icp,
+            max_position_error: stops.iter().map(|s| s.position_error).fold(0.0, f64::max),
+            mean_position_error: if stops.is_empty() {
+                0.0
+            } else {
+                stops.iter().map(|s| s.position_error).sum::<f64>() / stops.len() as f64
+            },
+            max_heading_error: stops.iter().map(|s| s.heading_error.abs()).fold(0.0, f64::max),
+            icp_fallbacks: stops
+                .iter()
+                .filter(|s| s.alignment.is_some_and(|a| a.fallback.is_some()))
+                .count(),
+            icp_degenerate: stops
+                .iter()
+                .filter(|s| s.alignment.is_some_and(|a| a.degenerate.is_some()))
+                .count(),
+            cleaning,
+            stops: stops.clone(),
+        }
+    }
+}
+
 /// `"robot"`: the footprint and where it can go (absent for a point robot).
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 pub struct RobotInfo {
@@ -261,6 +342,9 @@ pub struct RunRecord {
     /// The robot's footprint and where it can go (absent for a point robot).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub robot: Option<RobotInfo>,
+    /// The raw-scan run's lidar, drift and pose errors (absent for the exact sensor).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub raw_scans: Option<RawScanInfo>,
     /// One record per robot.
     pub robots: Vec<RobotRecord>,
     /// The metrics.
@@ -291,6 +375,20 @@ impl RunRecord {
             }
             for s in &mut r.scans {
                 s.at = frame.to_input(s.at);
+            }
+        }
+        if let Some(raw) = &mut self.raw_scans {
+            for s in &mut raw.stops {
+                for pose in [&mut s.truth, &mut s.odometry, &mut s.estimate] {
+                    let p = frame.to_input(pose.at());
+                    (pose.x, pose.y) = (p[0], p[1]);
+                }
+                if let Some(a) = &mut s.alignment {
+                    for pose in [&mut a.guess, &mut a.pose] {
+                        let p = frame.to_input(pose.at());
+                        (pose.x, pose.y) = (p[0], p[1]);
+                    }
+                }
             }
         }
         self.environment.frame_origin = Some(frame.origin);
@@ -337,6 +435,7 @@ impl RunRecord {
                 &Skipped::default(),
             ),
             robot: None,
+            raw_scans: None,
             robots: vec![RobotRecord {
                 id: 0,
                 path: run.path.clone(),

@@ -6,20 +6,12 @@ use rand::SeedableRng;
 use rand_chacha::ChaCha8Rng;
 use stopscan::algorithm::region::Region;
 use stopscan::algorithm::visibility::BoundaryPiece;
-use stopscan::geometry::{Domain, Location, segment_distance};
+use stopscan::geometry::{Domain, Location};
 use stopscan::kernel::Point;
 use stopscan::protocol::laser::Pose;
 use stopscan::sensing::ingest::{IngestParams, ingest};
 use stopscan::world::lidar::{Lidar, Walls};
 use stopscan::world::polygon::PolygonWorld;
-
-fn boundary_distance(d: &Domain, p: Point) -> f64 {
-    d.rings()
-        .iter()
-        .flat_map(|r| (0..r.len()).map(move |i| (r[i], r[(i + 1) % r.len()])))
-        .map(|(a, b)| segment_distance(p, a, b))
-        .fold(f64::INFINITY, f64::min)
-}
 
 /// Where the ray from `o` along `u` meets the segment `a b`, as a distance ahead.
 fn ray_hit(o: Point, u: Point, a: Point, b: Point) -> Option<f64> {
@@ -63,7 +55,7 @@ proptest! {
             ([lo[0].min(p[0]), lo[1].min(p[1])], [hi[0].max(p[0]), hi[1].max(p[1])])
         });
         let at = [lo[0] + u * (hi[0] - lo[0]), lo[1] + v * (hi[1] - lo[1])];
-        prop_assume!(d.locate(at) == Location::Interior && boundary_distance(&d, at) > 0.1);
+        prop_assume!(d.locate(at) == Location::Interior && d.boundary_distance(at) > 0.1);
         let lidar = Lidar { beams, range_max: range, sigma: 0.0, dropout: 0.0, spurious: 0.0, ..Lidar::default() };
         let pose = Pose { x: at[0], y: at[1], theta };
         let scan = lidar.scan(&Walls::of(&d), &pose, &mut ChaCha8Rng::seed_from_u64(seed));
@@ -108,7 +100,7 @@ proptest! {
         for piece in &got.observation.region.boundary {
             if let BoundaryPiece::Wall { from, to } = piece {
                 for p in [from, to] {
-                    prop_assert!(boundary_distance(&d, *p) <= tol, "{p:?} off the walls");
+                    prop_assert!(d.boundary_distance(*p) <= tol, "{p:?} off the walls");
                 }
             }
         }

@@ -28,6 +28,45 @@ pub const GAP_TOLERANCE: f64 = 1e-9;
 /// edge of the polygon: at least this, and more than [`rounding`] of the coordinates.
 const SIDE_STEP: f64 = 1e-9;
 
+/// The parts of the segment `a b` (as parameter intervals, appended to `out`) along which the
+/// segment `p q` runs within `tol`: where `p q` lies in the band of half-width `tol` around
+/// the line of `a b`, projected onto `a b`.
+pub fn band_cover(a: Point, b: Point, p: Point, q: Point, tol: f64, out: &mut Intervals) {
+    let (dx, dy) = (b[0] - a[0], b[1] - a[1]);
+    let len = dx.hypot(dy);
+    if len.partial_cmp(&0.0) != Some(std::cmp::Ordering::Greater)
+        || tol.partial_cmp(&0.0) != Some(std::cmp::Ordering::Greater)
+    {
+        return;
+    }
+    let (ux, uy) = (dx / len, dy / len);
+    // Signed distances of p and q from the line, and their parameters along it.
+    let side = |x: Point| ux * (x[1] - a[1]) - uy * (x[0] - a[0]);
+    let along = |x: Point| (ux * (x[0] - a[0]) + uy * (x[1] - a[1])) / len;
+    let (dp, dq) = (side(p), side(q));
+    // The part of p q (s in [0, 1]) with |dp + s (dq − dp)| <= tol.
+    let (mut s0, mut s1) = (0.0f64, 1.0f64);
+    let dd = dq - dp;
+    if dd.abs() < f64::MIN_POSITIVE {
+        if dp.abs() > tol {
+            return;
+        }
+    } else {
+        let (e0, e1) = ((-tol - dp) / dd, (tol - dp) / dd);
+        s0 = s0.max(e0.min(e1));
+        s1 = s1.min(e0.max(e1));
+        if s0 > s1 {
+            return;
+        }
+    }
+    let at = |s: f64| [p[0] + s * (q[0] - p[0]), p[1] + s * (q[1] - p[1])];
+    let (t0, t1) = (along(at(s0)), along(at(s1)));
+    let (t0, t1) = (t0.min(t1).max(0.0), t0.max(t1).min(1.0));
+    if t0 < t1 {
+        out.push([t0, t1]);
+    }
+}
+
 /// Appends to `out` the parameter intervals of segment `a → b` covered on its right side by
 /// the closed polygon `poly` (any orientation, simple), in the limit sense of the module
 /// documentation. `bounds` is the polygon's bounding box, for a quick rejection.

@@ -3,12 +3,14 @@
 //! - [`corner`]: the corner and circle papers' tables and figures, and the corner demo;
 //! - [`polygon`]: the discrete-visibility paper's worst cases and the benchmark sweeps;
 //! - [`grid`]: Fig. 7 of the ROI paper;
+//! - [`scans`]: the raw-scan pipeline's speed and ICP's convergence on scan pairs;
 //! - here: [`reproduce`] by id ([`ids`]), [`Reproduction`] with its rows, and Monte Carlo
 //!   summaries.
 
 pub mod corner;
 pub mod grid;
 pub mod polygon;
+pub mod scans;
 
 /// Every reproduction identifier, of all families.
 pub fn ids() -> Vec<&'static str> {

@@ -256,6 +256,15 @@ impl Domain {
         self.rings.iter().map(|r| signed_area(r)).sum()
     }
 
+    /// The distance from `p` to the nearest edge of any ring.
+    pub fn boundary_distance(&self, p: Point) -> f64 {
+        self.rings
+            .iter()
+            .flat_map(|r| (0..r.len()).map(move |i| (r[i], r[(i + 1) % r.len()])))
+            .map(|(a, b)| super::segment_distance(p, a, b))
+            .fold(f64::INFINITY, f64::min)
+    }
+
     /// Where `p` lies (exact).
     pub fn locate(&self, p: Point) -> Location {
         match kernel::ring_side(&self.rings[0], p) {

@@ -20,6 +20,7 @@ use crate::offline::polygon::{OfflineError, ReferenceLimits};
 use crate::protocol::CostModel;
 use crate::protocol::polygon::{Footprint, PolygonObservation, RobotSetup, Sensor};
 use crate::run_record::{RobotInfo, RunRecord, SensorInfo};
+use crate::sim::lidar::{LidarRun, LidarSetup};
 use crate::sim::polygon::{PolygonSimError, Reframe};
 use crate::sim::{Fanout, JsonLinesTrace, Observer};
 use crate::strategy::UnknownStrategy;
@@ -61,6 +62,10 @@ pub struct ExploreOptions {
     pub seed: u64,
     /// Where to stream the event trace (JSON lines), if anywhere.
     pub trace: Option<PathBuf>,
+    /// Drive from simulated raw laser scans with this lidar (`None`: the exact sensor).
+    pub lidar: Option<crate::world::lidar::Lidar>,
+    /// Odometry's drift with [`ExploreOptions::lidar`]: position error per metre driven.
+    pub odometry_drift: f64,
     /// ROS maps: the boundary simplification tolerance in metres
     /// ([`crate::io::ros_map::RosMapOptions::simplify`]; `None`: the loader's default, 1.5
     /// cells). Other formats are read as they are.
@@ -85,8 +90,18 @@ impl Default for ExploreOptions {
             seed: 0,
             trace: None,
             simplify: None,
+            lidar: None,
+            odometry_drift: 0.0,
         }
     }
+}
+
+/// How much the strategies' planning clearance grows over the robot's on raw scans: walls
+/// read from noisy scans, and a pose known only to ICP's precision, put the true walls up to
+/// this much nearer than planned (3σ of the range noise plus a pose error of a few
+/// centimetres after alignment).
+pub fn planning_margin(lidar: &crate::world::lidar::Lidar) -> f64 {
+    0.05 + lidar.sigma
 }
 
 /// The default of the window rule's `min_window`: a window narrower than the robot, or no
@@ -123,8 +138,8 @@ impl ExploreOptions {
             cost: self.cost,
             footprint: self.footprint.clone(),
             sensor: Sensor {
-                range: self.range,
-                beams: self.beams,
+                range: self.sensor_range(),
+                beams: self.beams.or(self.lidar.map(|l| l.beams as u32)),
                 min_feature: self.min_feature,
                 min_window: self
                     .min_window
@@ -133,8 +148,32 @@ impl ExploreOptions {
                     .min_pocket
                     .unwrap_or_else(|| default_min_pocket(&self.footprint, env.cell_size)),
                 pocket_cap: self.pocket_cap,
+                wall_tolerance: self.lidar.as_ref().map_or(0.0, planning_margin),
             },
         }
+    }
+
+    /// On raw scans ([`ExploreOptions::lidar`]): the robot as strategies plan with it (its
+    /// clearance grown by [`planning_margin`]) and the simulated robot's setup (gaps on a wall
+    /// line shorter than the window rule's minimum are read as wall); else the robot as it is.
+    ///
+    /// # Panics
+    /// Never: the clearance and the margin are finite and not negative.
+    pub fn raw_scan_setup(&self, setup: &RobotSetup) -> (RobotSetup, Option<LidarSetup>) {
+        let Some(l) = self.lidar else { return (setup.clone(), None) };
+        let plan = RobotSetup {
+            footprint: Footprint::disc(setup.footprint.clearance() + planning_margin(&l))
+                .expect("a finite clearance and margin"),
+            ..setup.clone()
+        };
+        let mut s = LidarSetup::new(l, self.odometry_drift, self.seed);
+        s.ingest.bridge = setup.sensor.min_window;
+        (plan, Some(s))
+    }
+
+    /// The sensor's range: the lidar's with raw scans, else [`ExploreOptions::range`].
+    pub fn sensor_range(&self) -> Option<f64> {
+        self.lidar.map_or(self.range, |l| Some(l.range_max))
     }
 
     /// The sensor's parameters are finite and not negative, and a beam count is positive.
@@ -173,6 +212,35 @@ impl ExploreOptions {
         }
         if self.beams == Some(0) {
             return Err(InvalidParameter::new("beams", "be at least 1", &0).into());
+        }
+        if !(self.odometry_drift.is_finite() && (0.0..=0.5).contains(&self.odometry_drift)) {
+            return Err(InvalidParameter::new(
+                "odometry_drift",
+                "be a share of the distance driven, in [0, 0.5]",
+                &Num(self.odometry_drift),
+            )
+            .into());
+        }
+        if self.odometry_drift > 0.0 && self.lidar.is_none() {
+            return Err(InvalidParameter::new(
+                "odometry_drift",
+                "come with raw scans (--sensor lidar): the exact sensor has no odometry",
+                &Num(self.odometry_drift),
+            )
+            .into());
+        }
+        if let (Some(l), Some(r)) = (self.lidar, self.range)
+            && r != l.range_max
+        {
+            return Err(InvalidParameter::new(
+                "range",
+                format!(
+                    "equal the lidar's max ({}) with --sensor lidar, or be left out",
+                    Num(l.range_max)
+                ),
+                &Num(r),
+            )
+            .into());
         }
         Ok(())
     }
@@ -320,7 +388,7 @@ pub fn explore_file(
     options: &ExploreOptions,
     progress: Progress,
 ) -> Result<Exploration, ExploreError> {
-    check_range(&options.strategy, options.range)?;
+    check_range(&options.strategy, options.sensor_range())?;
     options.check_sensor()?;
     check_simplify(options.simplify)?;
     let map = RosMapOptions { start, simplify: options.simplify, ..RosMapOptions::default() };
@@ -382,11 +450,12 @@ pub fn explore(
     mut progress: Progress,
 ) -> Result<Exploration, ExploreError> {
     let o = options;
-    check_range(&o.strategy, o.range)?;
+    check_range(&o.strategy, o.sensor_range())?;
     check_budgets(&o.limits)?;
     o.check_sensor()?;
     let setup = o.robot(env);
-    let mut strategy = crate::strategy::polygon::build_for(&o.strategy, &setup)?;
+    let (plan, lidar) = o.raw_scan_setup(&setup);
+    let mut strategy = crate::strategy::polygon::build_for(&o.strategy, &plan)?;
     let frame = env.frame;
     let start = start.or_else(|| env.default_start());
     if let Some(s) = start
@@ -394,13 +463,14 @@ pub fn explore(
     {
         return Err(ExploreError::StartOutside(frame.to_input(s)));
     }
-    let world = PolygonWorld::with_robot(env.domain.clone(), o.range, &o.footprint, start)
-        .map_err(|e| match e {
-            WorldError::StartBlocked { start, clearance } => {
-                WorldError::StartBlocked { start: frame.to_input(start), clearance }
-            }
-            e => e,
-        })?;
+    let world =
+        PolygonWorld::with_robot(env.domain.clone(), setup.sensor.range, &o.footprint, start)
+            .map_err(|e| match e {
+                WorldError::StartBlocked { start, clearance } => {
+                    WorldError::StartBlocked { start: frame.to_input(start), clearance }
+                }
+                e => e,
+            })?;
     let start = match (start, world.reach()) {
         (_, Some(r)) => r.start(),
         (Some(s), None) => s,
@@ -410,29 +480,30 @@ pub fn explore(
         return Err(ExploreError::StartOutside(frame.to_input(start)));
     }
     let mut counter = Counter { progress: &mut progress, scans: 0, metres: 0.0 };
-    let result = match &o.trace {
-        None => crate::sim::polygon::run(&world, start, &o.cost, strategy.as_mut(), &mut counter),
+    let mut drive = |observer: &mut dyn Observer<Point, PolygonObservation>| {
+        Driven::run(&world, start, &o.cost, strategy.as_mut(), lidar.as_ref(), observer)
+    };
+    let driven = match &o.trace {
+        None => drive(&mut counter),
         Some(path) => {
             let cannot = |source| ExploreError::Trace { path: path.clone(), source };
             let file = std::fs::File::create(path).map_err(cannot)?;
             let mut trace = JsonLinesTrace::new(std::io::BufWriter::new(file));
-            let result = {
+            let driven = {
                 let mut reframed = Reframe { inner: &mut trace, frame };
                 let observers: Vec<&mut dyn Observer<Point, PolygonObservation>> =
                     vec![&mut reframed, &mut counter];
                 let mut all = Fanout(observers);
-                crate::sim::polygon::run(&world, start, &o.cost, strategy.as_mut(), &mut all)
+                drive(&mut all)
             };
             if let Some(e) = trace.error {
                 return Err(cannot(e));
             }
-            result
+            driven
         }
     };
-    let (run, failure) = match result {
-        Ok(run) => (run, None),
-        Err(e) => (*e.partial, Some(e.error.map_places(|p| frame.to_input(p)))),
-    };
+    let Driven { run, failure, raw } = driven;
+    let failure = failure.map(|e| e.map_places(|p| frame.to_input(p)));
     // A run cut short is not measured against the offline references (they take time, and a
     // ratio of an unfinished run means nothing); its record says why it ended.
     let mut limits = if failure.is_some() { ReferenceLimits::BOUNDS_ONLY } else { o.limits };
@@ -452,7 +523,7 @@ pub fn explore(
     let mut refs = crate::offline::polygon::references_within(
         world.visibility(),
         start,
-        o.range,
+        setup.sensor.range,
         limits,
         seen.as_ref(),
         &mut |stage| progress(&format!("offline: {stage}")),
@@ -478,9 +549,48 @@ pub fn explore(
         let skipped = strategy.skipped();
         record.robot = Some(robot_info(&world, reach, &setup, &run, &record, &skipped, seen));
     }
+    if let (Some(r), Some(l)) = (&raw, &lidar) {
+        let margin = o.lidar.as_ref().map_or(0.0, planning_margin);
+        record.raw_scans = Some(crate::run_record::RawScanInfo::of(r, l, margin));
+    }
     let mut record = record.in_frame(&frame);
     record.error = failure.as_ref().map(ToString::to_string);
     Ok(Exploration { record, svg, failure })
+}
+
+/// A run as the simulator ended it: the run (on the ground truth for raw scans), why it was
+/// cut short, and the raw-scan run when there was one.
+struct Driven {
+    run: crate::sim::polygon::PolygonRun,
+    failure: Option<crate::sim::polygon::PolygonSimError>,
+    raw: Option<LidarRun>,
+}
+
+impl Driven {
+    /// Runs `strategy` with the exact sensor, or on raw scans with `lidar`.
+    fn run(
+        world: &PolygonWorld,
+        start: Point,
+        cost: &CostModel,
+        strategy: &mut dyn crate::strategy::polygon::PolygonStrategy,
+        lidar: Option<&LidarSetup>,
+        observer: &mut dyn Observer<Point, PolygonObservation>,
+    ) -> Self {
+        match lidar {
+            None => match crate::sim::polygon::run(world, start, cost, strategy, observer) {
+                Ok(run) => Self { run, failure: None, raw: None },
+                Err(e) => Self { run: *e.partial, failure: Some(e.error), raw: None },
+            },
+            Some(l) => match crate::sim::lidar::run(world, start, cost, strategy, l, observer) {
+                Ok(r) => Self { run: r.truth.clone(), failure: None, raw: Some(r) },
+                Err(e) => Self {
+                    run: e.partial.truth.clone(),
+                    failure: Some(e.error),
+                    raw: Some(*e.partial),
+                },
+            },
+        }
+    }
 }
 
 /// The footprint's part of the run record: the configuration space, what can be seen from

@@ -110,6 +110,9 @@ pub fn sweep_dir(
     if !options.footprint.is_point() {
         return Err(ExploreError::RobotInSweep("a footprint (--robot-radius, --footprint)"));
     }
+    if options.lidar.is_some() {
+        return Err(ExploreError::RobotInSweep("raw scans (--sensor, --odometry-drift)"));
+    }
     if options.beams.is_some()
         || options.min_feature > 0.0
         || options.min_window.is_some()

@@ -211,6 +211,12 @@ pub struct Sensor {
     /// The largest pocket the rule may leave, square metres (`--pocket-cap`).
     #[serde(default)]
     pub pocket_cap: f64,
+    /// How far apart two scans may place one wall, metres: range noise and pose error
+    /// (0 for the exact sensor). A window part along which another scan saw a wall within
+    /// this distance is closed: the wall was seen from elsewhere (a wall seen down a corridor
+    /// at a grazing angle reads as a chain of short windows).
+    #[serde(default)]
+    pub wall_tolerance: f64,
 }
 
 impl Sensor {

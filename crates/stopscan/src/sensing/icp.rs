@@ -41,6 +41,8 @@ pub struct IcpParams {
     pub max_turn: f64,
     /// The largest root-mean-square residual accepted, metres.
     pub max_rms: f64,
+    /// The range noise the residuals are weighed by, metres (at least 1 cm is used).
+    pub sigma: f64,
 }
 
 impl Default for IcpParams {
@@ -51,10 +53,11 @@ impl Default for IcpParams {
             huber: 0.05,
             max_iterations: 60,
             min_pairs: 20,
-            degenerate_ratio: 0.02,
+            degenerate_ratio: 0.005,
             max_shift: 1.0,
             max_turn: 20f64.to_radians(),
             max_rms: 0.1,
+            sigma: 0.02,
         }
     }
 }
@@ -160,9 +163,52 @@ impl WallMap {
         }
     }
 
-    /// The nearest segment to `q` within `gate` whose foot from `q` falls inside it: its
-    /// unit normal and a point on it.
-    fn nearest(&self, q: Point, gate: f64) -> Option<(Point, Point, f64)> {
+    /// Adds the parts of `walls` the map does not hold yet: each wall is cut into pieces of at
+    /// most `piece` metres, and a piece is skipped when a wall of the same orientation runs
+    /// within `tol` of its middle. A wall seen again from a pose that is a little off would
+    /// otherwise stand in the map twice, and later scans would align to either copy.
+    pub fn extend_unseen(&mut self, walls: &[[Point; 2]], piece: f64, tol: f64) {
+        let mut fresh = Vec::new();
+        for w in walls {
+            let (dx, dy) = (w[1][0] - w[0][0], w[1][1] - w[0][1]);
+            let len = dx.hypot(dy);
+            if !(len.is_finite() && len > 1e-9) {
+                continue;
+            }
+            let k = (len / piece).ceil().max(1.0) as usize;
+            let at = |t: f64| [w[0][0] + t * dx, w[0][1] + t * dy];
+            for i in 0..k {
+                let (a, b) = (at(i as f64 / k as f64), at((i + 1) as f64 / k as f64));
+                let m = [0.5 * (a[0] + b[0]), 0.5 * (a[1] + b[1])];
+                if !self.holds(m, [dx / len, dy / len], tol) {
+                    fresh.push([a, b]);
+                }
+            }
+        }
+        self.extend(&fresh);
+    }
+
+    /// Whether a wall running along `dir` (a unit vector) passes within `tol` of `m`.
+    fn holds(&self, m: Point, dir: Point, tol: f64) -> bool {
+        let (lo, hi) = (cell_of([m[0] - tol, m[1] - tol]), cell_of([m[0] + tol, m[1] + tol]));
+        (lo.0..=hi.0).any(|i| {
+            (lo.1..=hi.1).any(|j| {
+                self.cells.get(&(i, j)).is_some_and(|ids| {
+                    ids.iter().any(|&id| {
+                        let [a, b] = self.segments[id as usize];
+                        let (ex, ey) = (b[0] - a[0], b[1] - a[1]);
+                        let l = ex.hypot(ey);
+                        (ex * dir[0] + ey * dir[1]) / l > 0.9 && segment_distance(m, a, b) <= tol
+                    })
+                })
+            })
+        })
+    }
+
+    /// The nearest segment to `q` within `gate` whose foot from `q` falls inside it and whose
+    /// free side faces the scanner at `eye` (a return lies on a face the scanner sees: the
+    /// back face of a thin wall is never its match): its unit normal and a point on it.
+    fn nearest(&self, q: Point, eye: Point, gate: f64) -> Option<(Point, Point, f64)> {
         let (lo, hi) = (cell_of([q[0] - gate, q[1] - gate]), cell_of([q[0] + gate, q[1] + gate]));
         let mut best: Option<(Point, Point, f64)> = None;
         for i in lo.0..=hi.0 {
@@ -171,6 +217,11 @@ impl WallMap {
                 for &id in ids {
                     let [a, b] = self.segments[id as usize];
                     let (dx, dy) = (b[0] - a[0], b[1] - a[1]);
+                    // Walls run counter-clockwise around the scan that saw them: free space
+                    // on their left.
+                    if dx * (eye[1] - a[1]) - dy * (eye[0] - a[0]) <= 0.0 {
+                        continue;
+                    }
                     let l2 = dx * dx + dy * dy;
                     let t = ((q[0] - a[0]) * dx + (q[1] - a[1]) * dy) / l2;
                     if !(0.0..=1.0).contains(&t) {
@@ -189,11 +240,32 @@ impl WallMap {
     }
 }
 
+/// How far odometry's pose may be off, one standard deviation: metres per axis and radians.
+/// ICP weighs its pairs against this prior, so that along a direction the walls barely
+/// constrain, odometry prevails.
+#[derive(Debug, Clone, Copy, PartialEq, serde::Serialize, serde::Deserialize)]
+pub struct Prior {
+    /// Position, metres per axis.
+    pub position: f64,
+    /// Heading, radians.
+    pub heading: f64,
+}
+
 /// Aligns `points` (returns in the scanner's frame) to `map`, starting from `guess` (the
-/// scanner's pose by odometry, in the map frame).
-pub fn align(points: &[Point], guess: &Pose, map: &WallMap, params: &IcpParams) -> Alignment {
+/// scanner's pose by odometry, in the map frame), weighed against odometry's `prior` when
+/// given.
+pub fn align(
+    points: &[Point],
+    guess: &Pose,
+    prior: Option<Prior>,
+    map: &WallMap,
+    params: &IcpParams,
+) -> Alignment {
     let mut pose = *guess;
-    let mut gate = params.gate_start;
+    // The gate starts wide enough for odometry's error at three standard deviations.
+    let mut gate = prior.map_or(params.gate_start, |p| {
+        params.gate_start.max(3.0 * p.position + 3.0 * p.heading * 10.0).min(3.0)
+    });
     let mut out = Alignment {
         guess: *guess,
         pose: *guess,
@@ -211,26 +283,7 @@ pub fn align(points: &[Point], guess: &Pose, map: &WallMap, params: &IcpParams) 
         .max(1.0);
     for it in 0..params.max_iterations {
         out.iterations = it + 1;
-        let c = pose.at();
-        let mut h = [[0.0; 3]; 3];
-        let mut g = [0.0; 3];
-        let (mut pairs, mut sq) = (0usize, 0.0);
-        for p in points {
-            let q = pose.apply(*p);
-            let Some((n, a, _)) = map.nearest(q, gate) else { continue };
-            let r = n[0] * (q[0] - a[0]) + n[1] * (q[1] - a[1]);
-            let w = if r.abs() <= params.huber { 1.0 } else { params.huber / r.abs() };
-            // d(n · q') / d(dx, dy, dθ·lever) at zero.
-            let jac = [n[0], n[1], (n[0] * -(q[1] - c[1]) + n[1] * (q[0] - c[0])) / lever];
-            for (i, hi) in h.iter_mut().enumerate() {
-                for (j, hij) in hi.iter_mut().enumerate() {
-                    *hij += w * jac[i] * jac[j];
-                }
-                g[i] -= w * jac[i] * r;
-            }
-            pairs += 1;
-            sq += r * r;
-        }
+        let (mut h, mut g, pairs, sq) = normal_equations(points, &pose, map, gate, params, lever);
         out.pairs = pairs;
         out.rms = if pairs > 0 { (sq / pairs as f64).sqrt() } else { 0.0 };
         if pairs < params.min_pairs {
@@ -238,26 +291,18 @@ pub fn align(points: &[Point], guess: &Pose, map: &WallMap, params: &IcpParams) 
             out.pose = *guess;
             return out;
         }
-        // Solve in the well-constrained eigen-directions only.
-        let (vals, vecs) = jacobi_eigen(h);
-        let top = vals.iter().copied().fold(0.0, f64::max);
-        let mut step = [0.0; 3];
-        out.degenerate = None;
-        for k in 0..3 {
-            let v = [vecs[0][k], vecs[1][k], vecs[2][k]];
-            if vals[k] <= params.degenerate_ratio * top {
-                // Unconstrained: report its translation part (the motion odometry keeps).
-                let t = v[0].hypot(v[1]);
-                if t > 0.5 {
-                    out.degenerate = Some([v[0] / t, v[1] / t]);
-                }
-                continue;
-            }
-            let coef = (v[0] * g[0] + v[1] * g[1] + v[2] * g[2]) / vals[k];
-            for i in 0..3 {
-                step[i] += coef * v[i];
+        if let Some(p) = prior {
+            // Odometry's prior pulls toward the guess.
+            let off = [guess.x - pose.x, guess.y - pose.y, wrap(guess.theta - pose.theta) * lever];
+            let sd = [p.position, p.position, p.heading * lever];
+            for (k, (o, d)) in off.iter().zip(sd).enumerate() {
+                let w = 1.0 / d.max(1e-6).powi(2);
+                h[k][k] += w;
+                g[k] += w * o;
             }
         }
+        let (step, degenerate) = solve(h, g, params.degenerate_ratio);
+        out.degenerate = degenerate;
         let (dx, dy, dth) = (step[0], step[1], step[2] / lever);
         // Rotate about the scanner's position, then shift.
         pose = Pose { x: pose.x + dx, y: pose.y + dy, theta: wrap(pose.theta + dth) };
@@ -267,6 +312,13 @@ pub fn align(points: &[Point], guess: &Pose, map: &WallMap, params: &IcpParams) 
             break;
         }
         gate = (gate * 0.7).max(params.gate_end);
+    }
+    // Along a direction the walls leave free, the pose is odometry's: early iterations, with
+    // a wide gate, may have pushed it there on pairs that were wrong.
+    if let Some(d) = out.degenerate {
+        let along = (pose.x - guess.x) * d[0] + (pose.y - guess.y) * d[1];
+        pose.x -= along * d[0];
+        pose.y -= along * d[1];
     }
     out.pose = pose;
     let (shift, turn) = out.correction();
@@ -279,6 +331,66 @@ pub fn align(points: &[Point], guess: &Pose, map: &WallMap, params: &IcpParams) 
         out.pose = *guess;
     }
     out
+}
+
+/// The normal equations of the point-to-line residuals at `pose` (pairs within `gate`, Huber
+/// weights, in units of the range noise), with the rotation scaled by `lever`: the matrix,
+/// the right-hand side, the pairs and the sum of squared residuals.
+fn normal_equations(
+    points: &[Point],
+    pose: &Pose,
+    map: &WallMap,
+    gate: f64,
+    params: &IcpParams,
+    lever: f64,
+) -> ([[f64; 3]; 3], [f64; 3], usize, f64) {
+    let c = pose.at();
+    let w2 = 1.0 / params.sigma.max(0.01).powi(2);
+    let mut h = [[0.0; 3]; 3];
+    let mut g = [0.0; 3];
+    let (mut pairs, mut sq) = (0usize, 0.0);
+    for p in points {
+        let q = pose.apply(*p);
+        let Some((n, a, _)) = map.nearest(q, c, gate) else { continue };
+        let r = n[0] * (q[0] - a[0]) + n[1] * (q[1] - a[1]);
+        let w = w2 * if r.abs() <= params.huber { 1.0 } else { params.huber / r.abs() };
+        // d(n · q') / d(dx, dy, dθ·lever) at zero.
+        let jac = [n[0], n[1], (n[0] * -(q[1] - c[1]) + n[1] * (q[0] - c[0])) / lever];
+        for (i, hi) in h.iter_mut().enumerate() {
+            for (j, hij) in hi.iter_mut().enumerate() {
+                *hij += w * jac[i] * jac[j];
+            }
+            g[i] -= w * jac[i] * r;
+        }
+        pairs += 1;
+        sq += r * r;
+    }
+    (h, g, pairs, sq)
+}
+
+/// The step `h⁻¹ g` in the eigen-directions whose eigenvalue is above `ratio` of the
+/// largest, and the translation part of an unconstrained direction, if there is one.
+fn solve(h: [[f64; 3]; 3], g: [f64; 3], ratio: f64) -> ([f64; 3], Option<Point>) {
+    let (vals, vecs) = jacobi_eigen(h);
+    let top = vals.iter().copied().fold(0.0, f64::max);
+    let mut step = [0.0; 3];
+    let mut degenerate = None;
+    for (k, &val) in vals.iter().enumerate() {
+        let v = [vecs[0][k], vecs[1][k], vecs[2][k]];
+        if val <= ratio * top {
+            // Unconstrained: report its translation part (the motion odometry keeps).
+            let t = v[0].hypot(v[1]);
+            if t > 0.5 {
+                degenerate = Some([v[0] / t, v[1] / t]);
+            }
+            continue;
+        }
+        let coef = (v[0] * g[0] + v[1] * g[1] + v[2] * g[2]) / val;
+        for (s, vi) in step.iter_mut().zip(v) {
+            *s += coef * vi;
+        }
+    }
+    (step, degenerate)
 }
 
 /// Eigenvalues and eigenvectors (as columns) of a symmetric 3×3 matrix, by cyclic Jacobi
@@ -301,15 +413,15 @@ fn jacobi_eigen(mut a: [[f64; 3]; 3]) -> ([f64; 3], [[f64; 3]; 3]) {
             let c = 1.0 / (t * t + 1.0).sqrt();
             let s = t * c;
             // A ← Jᵀ A J with J the rotation in the (p, q) plane.
-            for k in 0..3 {
-                let (akp, akq) = (a[k][p], a[k][q]);
-                a[k][p] = c * akp - s * akq;
-                a[k][q] = s * akp + c * akq;
+            for row in &mut a {
+                let (akp, akq) = (row[p], row[q]);
+                row[p] = c * akp - s * akq;
+                row[q] = s * akp + c * akq;
             }
+            let (rp, rq) = (a[p], a[q]);
             for k in 0..3 {
-                let (apk, aqk) = (a[p][k], a[q][k]);
-                a[p][k] = c * apk - s * aqk;
-                a[q][k] = s * apk + c * aqk;
+                a[p][k] = c * rp[k] - s * rq[k];
+                a[q][k] = s * rp[k] + c * rq[k];
             }
             for row in &mut v {
                 let (vp, vq) = (row[p], row[q]);
@@ -333,15 +445,21 @@ mod tests {
             [[8.0, 0.0], [8.0, 5.0]],
             [[8.0, 5.0], [0.0, 5.0]],
             [[0.0, 5.0], [0.0, 0.0]],
-            [[3.0, 2.0], [4.0, 2.0]],
-            [[4.0, 2.0], [4.0, 3.0]],
+            // The pillar's faces, with free space on their left as a scan gives them.
+            [[4.0, 2.0], [3.0, 2.0]],
+            [[4.0, 3.0], [4.0, 2.0]],
         ]
     }
 
     fn sample(walls: &[[Point; 2]], truth: &Pose, step: f64) -> Vec<Point> {
         let inv = truth.inverse();
+        // The faces the scanner sees: it stands on their free (left) side.
         walls
             .iter()
+            .filter(|w| {
+                let (a, b) = (w[0], w[1]);
+                (b[0] - a[0]) * (truth.y - a[1]) - (b[1] - a[1]) * (truth.x - a[0]) > 0.0
+            })
             .flat_map(|w| {
                 let len = (w[1][0] - w[0][0]).hypot(w[1][1] - w[0][1]);
                 let k = (len / step).ceil() as usize;
@@ -373,7 +491,7 @@ mod tests {
         let truth = Pose { x: 2.0, y: 1.5, theta: 0.4 };
         let pts = sample(&room_walls(), &truth, 0.05);
         let guess = Pose { x: 2.25, y: 1.35, theta: 0.4 + 8f64.to_radians() };
-        let a = align(&pts, &guess, &map, &IcpParams::default());
+        let a = align(&pts, &guess, None, &map, &IcpParams::default());
         assert!(a.converged && a.fallback.is_none() && a.degenerate.is_none(), "{a:?}");
         assert!((a.pose.x - truth.x).abs() < 1e-6 && (a.pose.y - truth.y).abs() < 1e-6, "{a:?}");
         assert!((a.pose.theta - truth.theta).abs() < 1e-7, "{a:?}");
@@ -392,7 +510,7 @@ mod tests {
         let near: Vec<[Point; 2]> = vec![[[-10.0, 0.0], [10.0, 0.0]], [[10.0, 2.0], [-10.0, 2.0]]];
         let pts = sample(&near, &truth, 0.05);
         let guess = Pose { x: 0.3, y: 1.2, theta: 0.05 };
-        let a = align(&pts, &guess, &map, &IcpParams::default());
+        let a = align(&pts, &guess, None, &map, &IcpParams::default());
         let d = a.degenerate.expect("the corridor leaves x free");
         assert!(d[0].abs() > 0.99, "{d:?}");
         // Across the corridor and in heading, corrected; along it, odometry's x kept.
@@ -404,7 +522,7 @@ mod tests {
     fn nothing_known_keeps_odometry() {
         let pts = sample(&room_walls(), &Pose::default(), 0.1);
         let guess = Pose { x: 1.0, y: 1.0, theta: 0.0 };
-        let a = align(&pts, &guess, &WallMap::new(), &IcpParams::default());
+        let a = align(&pts, &guess, None, &WallMap::new(), &IcpParams::default());
         assert_eq!(a.fallback, Some(Fallback::TooFewPairs));
         assert_eq!(a.pose, guess);
     }

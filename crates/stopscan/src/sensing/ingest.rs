@@ -13,7 +13,10 @@
 //! 2. **Breakpoints** (Borges and Aldon's adaptive breakpoint detector). Neighbouring returns
 //!    `r` and `r'` belong to one surface when `|r − r'| ≤ r · sin Δφ / sin(λ − Δφ) + 3σ`,
 //!    with `Δφ` the beam spacing, `λ` the shallowest incidence a surface is seen at, and `σ`
-//!    the range noise. A break between returns is a **window**, from one end to the other,
+//!    the range noise; or when each lies on the line fitted to the returns before and after
+//!    the other, no more than `bridge` apart (a wall seen at a grazing angle, as down a
+//!    corridor: an occlusion puts the far return off the near surface's line, and a longer
+//!    gap may hide a door no beam went through). A break between returns is a **window**, from one end to the other,
 //!    with the nearer end as its occluding corner; a break between a return and no return is
 //!    a window too, out to `range_max`; neighbouring beams without return are joined by
 //!    **range frontiers** (chords at `range_max`).
@@ -47,12 +50,22 @@ pub struct IngestParams {
     pub split: f64,
     /// Whether isolated single-beam returns are removed as spurious.
     pub despeckle: bool,
+    /// The longest gap between neighbouring returns on one line that is read as wall, metres:
+    /// a longer one may hide an opening no beam went through (a door seen down a corridor),
+    /// so it is left as a window (the shortest window worth a trip is a good value).
+    pub bridge: f64,
 }
 
 impl IngestParams {
     /// The defaults for a sensor with range noise `sigma`.
     pub fn for_noise(sigma: f64) -> Self {
-        Self { sigma, lambda: 10f64.to_radians(), split: (3.0 * sigma).max(0.03), despeckle: true }
+        Self {
+            sigma,
+            lambda: 10f64.to_radians(),
+            split: (3.0 * sigma).max(0.03),
+            despeckle: true,
+            bridge: 0.4,
+        }
     }
 }
 
@@ -88,6 +101,10 @@ pub struct Ingested {
     pub points: Vec<Point>,
     /// The fitted wall segments, in the same frame.
     pub walls: Vec<[Point; 2]>,
+    /// Gaps longer than [`IngestParams::bridge`] between returns on one wall line (left as
+    /// windows in the region, since an opening may hide there), as segments between the two
+    /// returns: evidence of the line for scan matching, not of a wall.
+    pub bridges: Vec<[Point; 2]>,
     /// What cleaning did.
     pub cleaning: Cleaning,
 }
@@ -115,6 +132,9 @@ enum Beam {
     Unknown,
 }
 
+/// How many returns on each side of a break are fitted to test whether the wall continues.
+const LINE_POINTS: usize = 4;
+
 /// The nearest a vertex may be to the scanner, metres (a return at range 0 would put a
 /// vertex on the viewpoint).
 const MIN_RADIUS: f64 = 1e-3;
@@ -133,13 +153,63 @@ pub fn ingest(
         return Err(IngestError::Pose(*pose));
     }
     let n = scan.ranges.len();
-    let full = scan.is_full_turn();
     // Beams in counter-clockwise order.
     let order: Vec<usize> =
         if scan.angle_increment > 0.0 { (0..n).collect() } else { (0..n).rev().collect() };
-    let angle = |k: usize| scan.angle(order[k]);
-    let mut cleaning = Cleaning { beams: n, ..Cleaning::default() };
-    let mut beams: Vec<Beam> = order
+    let (beams, mut cleaning) = classify(scan, &order);
+    let mut b = Beams {
+        kinds: beams,
+        dirs: order.iter().map(|&i| [scan.angle(i).cos(), scan.angle(i).sin()]).collect(),
+        full: scan.is_full_turn(),
+        range_max: scan.range_max,
+        dphi: scan.angle_increment.abs(),
+        params,
+    };
+    let range_of = |x: Beam| b.range_of(x);
+    let mut filled = b.kinds.clone();
+    fill_dropouts(&mut filled, b.full, range_of)?;
+    if params.despeckle {
+        cleaning.spurious = despeckle(&mut filled, b.full, |r| b.gap(r), range_of);
+    }
+    b.kinds = filled;
+    cleaning.returns -= cleaning.spurious.min(cleaning.returns);
+    let t = b.trace();
+    let to_map = |p: Point| pose.apply(p);
+    let at = pose.at();
+    let polygon: Vec<Point> = t.verts.iter().map(|v| to_map(v.0)).collect();
+    let m = polygon.len();
+    let boundary = (0..m)
+        .map(|i| {
+            let (from, to) = (polygon[i], polygon[(i + 1) % m]);
+            match t.verts[i].1 {
+                Piece::Wall => BoundaryPiece::Wall { from, to },
+                Piece::Frontier => BoundaryPiece::Frontier { from, to },
+                Piece::Break => {
+                    let d = |p: Point| (p[0] - at[0]).hypot(p[1] - at[1]);
+                    let (reflex, far) = if d(from) <= d(to) { (from, to) } else { (to, from) };
+                    BoundaryPiece::Window { from, to, reflex, far }
+                }
+            }
+        })
+        .collect();
+    let segments =
+        |v: Vec<[Point; 2]>| v.into_iter().map(|w| [to_map(w[0]), to_map(w[1])]).collect();
+    Ok(Ingested {
+        observation: PolygonObservation {
+            at,
+            region: VisibilityRegion { viewpoint: at, polygon, boundary },
+        },
+        points: t.points.into_iter().map(to_map).collect(),
+        walls: segments(t.walls),
+        bridges: segments(t.bridges),
+        cleaning,
+    })
+}
+
+/// Each beam's reading under REP 117, in the order given, and the counts.
+fn classify(scan: &LaserScan, order: &[usize]) -> (Vec<Beam>, Cleaning) {
+    let mut cleaning = Cleaning { beams: order.len(), ..Cleaning::default() };
+    let beams = order
         .iter()
         .map(|&i| {
             let r = scan.ranges[i];
@@ -158,126 +228,198 @@ pub fn ingest(
             }
         })
         .collect();
-    let range_of = |b: Beam| match b {
-        Beam::Hit(r) => r,
-        _ => scan.range_max,
-    };
-    fill_dropouts(&mut beams, full, range_of)?;
-    let dphi = scan.angle_increment.abs();
-    let gap = |r: f64| r * dphi.sin() / (params.lambda - dphi).sin().max(1e-9) + 3.0 * params.sigma;
-    if params.despeckle {
-        cleaning.spurious = despeckle(&mut beams, full, gap, range_of);
+    (beams, cleaning)
+}
+
+/// A scan's beams after cleaning, counter-clockwise, in the scanner's frame.
+struct Beams<'a> {
+    kinds: Vec<Beam>,
+    /// Each beam's unit direction.
+    dirs: Vec<Point>,
+    full: bool,
+    range_max: f64,
+    dphi: f64,
+    params: &'a IngestParams,
+}
+
+/// What tracing the beams gives, in the scanner's frame.
+struct Traced {
+    /// Vertices with the kind of piece that leaves each one.
+    verts: Vec<(Point, Piece)>,
+    walls: Vec<[Point; 2]>,
+    bridges: Vec<[Point; 2]>,
+    points: Vec<Point>,
+}
+
+impl Beams<'_> {
+    fn n(&self) -> usize {
+        self.kinds.len()
     }
-    cleaning.returns -= cleaning.spurious.min(cleaning.returns);
-    let dir = |k: usize| {
-        let a = angle(k);
-        [a.cos(), a.sin()]
-    };
-    let point = |k: usize| {
-        let (u, r) = (dir(k), range_of(beams[k]));
+
+    fn range_of(&self, b: Beam) -> f64 {
+        match b {
+            Beam::Hit(r) => r,
+            _ => self.range_max,
+        }
+    }
+
+    /// The breakpoint threshold at range `r`.
+    fn gap(&self, r: f64) -> f64 {
+        let p = self.params;
+        r * self.dphi.sin() / (p.lambda - self.dphi).sin().max(1e-9) + 3.0 * p.sigma
+    }
+
+    fn point(&self, k: usize) -> Point {
+        let (u, r) = (self.dirs[k], self.range_of(self.kinds[k]));
         [r * u[0], r * u[1]]
-    };
-    // Whether beams k and k + 1 (cyclically) are on one surface.
-    let joined = |a: usize, b: usize| match (beams[a], beams[b]) {
-        (Beam::Hit(x), Beam::Hit(y)) => (x - y).abs() <= gap(x.min(y)),
-        _ => false,
-    };
-    // Runs of returns on one surface: [start, end] in beam order (end may wrap past n).
-    let mut runs: Vec<(usize, usize)> = Vec::new();
-    let start = if full {
-        // Start after a break, so no run wraps; a scan all on one surface starts at 0.
-        (0..n).find(|&k| !joined((k + n - 1) % n, k)).unwrap_or(0)
-    } else {
-        0
-    };
-    let mut k = 0;
-    while k < n {
-        let a = (start + k) % n;
-        if !matches!(beams[a], Beam::Hit(_)) {
-            k += 1;
-            continue;
-        }
-        let mut len = 1;
-        while k + len < n && joined((start + k + len - 1) % n, (start + k + len) % n) {
-            len += 1;
-        }
-        runs.push((start + k, start + k + len - 1));
-        k += len;
     }
-    // Vertices (sensor frame) with the kind of piece that leaves each one.
-    let mut verts: Vec<(Point, Piece)> = Vec::new();
-    let mut walls: Vec<[Point; 2]> = Vec::new();
-    let mut points: Vec<Point> = Vec::new();
-    // A full turn all on one surface closes on itself: its last piece is a wall too.
-    let closed = full && runs.len() == 1 && joined(n - 1, 0) && runs[0] == (start, start + n - 1);
-    let mut run_at = runs.iter().peekable();
-    let mut k = start;
-    while k < start + n {
-        let b = k % n;
-        if let Some(&&(s, e)) = run_at.peek()
-            && s == k
-        {
-            run_at.next();
-            let idx: Vec<usize> = (s..=e).map(|j| j % n).collect();
-            let pts: Vec<Point> = idx.iter().map(|&j| point(j)).collect();
-            points.extend(&pts);
-            let vs = fit_run(&pts, &idx.iter().map(|&j| dir(j)).collect::<Vec<_>>(), params);
-            let last = vs.len() - 1;
-            for (i, v) in vs.iter().enumerate() {
-                verts.push((*v, if i < last || closed { Piece::Wall } else { Piece::Break }));
-                if i < last {
-                    walls.push([*v, vs[i + 1]]);
-                } else if closed {
-                    walls.push([*v, vs[0]]);
-                }
+
+    fn is_hit(&self, k: usize) -> bool {
+        matches!(self.kinds[k], Beam::Hit(_))
+    }
+
+    /// Beam `k`'s return (cyclically on a full turn), if it has one.
+    fn hit_at(&self, k: isize) -> Option<Point> {
+        let n = self.n();
+        let k =
+            if self.full { k.rem_euclid(n as isize) as usize } else { usize::try_from(k).ok()? };
+        (k < n && self.is_hit(k)).then(|| self.point(k))
+    }
+
+    /// Whether each of the returns `a` and `b` lies on the line fitted to the returns before
+    /// and after the other (a wall seen at a grazing angle: an occlusion puts the far return
+    /// off the near surface's line).
+    fn continues(&self, a: usize, b: usize) -> bool {
+        let tol = 3.0 * self.params.sigma + 0.01;
+        let side = |from: isize, step: isize, other: Point| {
+            let pts: Vec<Point> =
+                (0..LINE_POINTS as isize).map_while(|i| self.hit_at(from + step * i)).collect();
+            pts.len() >= 2 && {
+                let l = fit_line(&pts);
+                pts.iter().all(|p| l.distance(*p) <= tol) && l.distance(other) <= tol
             }
-            k = e + 1;
-            continue;
-        }
-        // A beam without return: a range frontier to the next beam if it has none either.
-        let next_open = k + 1 < start + n || full;
-        let kind = if next_open && beams[b] == Beam::Open && beams[(b + 1) % n] == Beam::Open {
-            Piece::Frontier
-        } else {
-            Piece::Break
         };
-        verts.push((point(b), kind));
-        k += 1;
+        side(a as isize, -1, self.point(b)) && side(b as isize, 1, self.point(a))
     }
-    if !full {
-        // The unseen sector: back to the scanner and out again, as range frontiers.
-        if let Some(l) = verts.last_mut() {
-            l.1 = Piece::Frontier;
-        }
-        verts.push(([0.0, 0.0], Piece::Frontier));
-    }
-    let to_map = |p: Point| pose.apply(p);
-    let at = pose.at();
-    let polygon: Vec<Point> = verts.iter().map(|v| to_map(v.0)).collect();
-    let m = polygon.len();
-    let boundary = (0..m)
-        .map(|i| {
-            let (from, to) = (polygon[i], polygon[(i + 1) % m]);
-            match verts[i].1 {
-                Piece::Wall => BoundaryPiece::Wall { from, to },
-                Piece::Frontier => BoundaryPiece::Frontier { from, to },
-                Piece::Break => {
-                    let d = |p: Point| (p[0] - at[0]).hypot(p[1] - at[1]);
-                    let (reflex, far) = if d(from) <= d(to) { (from, to) } else { (to, from) };
-                    BoundaryPiece::Window { from, to, reflex, far }
+
+    /// Whether neighbouring beams `a` and `b` are returns from one surface: the breakpoint
+    /// test, or a wall that continues across a gap of at most `bridge`.
+    fn joined(&self, a: usize, b: usize) -> bool {
+        match (self.kinds[a], self.kinds[b]) {
+            (Beam::Hit(x), Beam::Hit(y)) => {
+                (x - y).abs() <= self.gap(x.min(y)) || {
+                    let (pa, pb) = (self.point(a), self.point(b));
+                    (pb[0] - pa[0]).hypot(pb[1] - pa[1]) <= self.params.bridge
+                        && self.continues(a, b)
                 }
             }
-        })
-        .collect();
-    Ok(Ingested {
-        observation: PolygonObservation {
-            at,
-            region: VisibilityRegion { viewpoint: at, polygon, boundary },
-        },
-        points: points.into_iter().map(to_map).collect(),
-        walls: walls.into_iter().map(|w| [to_map(w[0]), to_map(w[1])]).collect(),
-        cleaning,
-    })
+            _ => false,
+        }
+    }
+
+    /// Where tracing starts (after a break on a full turn, so that no run wraps) and the runs
+    /// of returns on one surface, `[start, end]` in beam order (ends may pass `n`).
+    fn runs(&self) -> (usize, Vec<(usize, usize)>) {
+        let n = self.n();
+        let start = if self.full {
+            (0..n).find(|&k| !self.joined((k + n - 1) % n, k)).unwrap_or(0)
+        } else {
+            0
+        };
+        let mut runs = Vec::new();
+        let mut k = 0;
+        while k < n {
+            if !self.is_hit((start + k) % n) {
+                k += 1;
+                continue;
+            }
+            let mut len = 1;
+            while k + len < n && self.joined((start + k + len - 1) % n, (start + k + len) % n) {
+                len += 1;
+            }
+            runs.push((start + k, start + k + len - 1));
+            k += len;
+        }
+        (start, runs)
+    }
+
+    /// The region's vertices and pieces, the walls fitted, the long gaps on wall lines and
+    /// the returns.
+    fn trace(&self) -> Traced {
+        let n = self.n();
+        let (start, runs) = self.runs();
+        let mut t = Traced {
+            verts: Vec::new(),
+            walls: Vec::new(),
+            bridges: Vec::new(),
+            points: Vec::new(),
+        };
+        // A full turn all on one surface closes on itself: its last piece is a wall too.
+        let closed = self.full
+            && runs.len() == 1
+            && self.joined(n - 1, 0)
+            && runs[0] == (start, start + n - 1);
+        let mut run_at = runs.iter().peekable();
+        let mut k = start;
+        while k < start + n {
+            let b = k % n;
+            if let Some(&&(s, e)) = run_at.peek()
+                && s == k
+            {
+                run_at.next();
+                self.trace_run(s, e, closed, &mut t);
+                k = e + 1;
+                continue;
+            }
+            // A beam without return: a range frontier to the next beam if it has none either.
+            let next_open = k + 1 < start + n || self.full;
+            let open = |j: usize| self.kinds[j] == Beam::Open;
+            let kind = if next_open && open(b) && open((b + 1) % n) {
+                Piece::Frontier
+            } else {
+                Piece::Break
+            };
+            t.verts.push((self.point(b), kind));
+            k += 1;
+        }
+        if !self.full {
+            // The unseen sector: back to the scanner and out again, as range frontiers.
+            if let Some(l) = t.verts.last_mut() {
+                l.1 = Piece::Frontier;
+            }
+            t.verts.push(([0.0, 0.0], Piece::Frontier));
+        }
+        t
+    }
+
+    /// One run of returns `s..=e` (beam order, ends may pass `n`): its fitted walls, and a
+    /// bridge to the next run when a long gap on one line separates them.
+    fn trace_run(&self, s: usize, e: usize, closed: bool, t: &mut Traced) {
+        let n = self.n();
+        let idx: Vec<usize> = (s..=e).map(|j| j % n).collect();
+        let pts: Vec<Point> = idx.iter().map(|&j| self.point(j)).collect();
+        t.points.extend(&pts);
+        let dirs: Vec<Point> = idx.iter().map(|&j| self.dirs[j]).collect();
+        let vs = fit_run(&pts, &dirs, self.params);
+        let last = vs.len() - 1;
+        for (i, &v) in vs.iter().enumerate() {
+            let wall = i < last || closed;
+            t.verts.push((v, if wall { Piece::Wall } else { Piece::Break }));
+            if wall {
+                t.walls.push([v, vs[(i + 1) % vs.len()]]);
+            }
+        }
+        // A long gap to the next run on the same line: evidence for scan matching.
+        let (a, b) = (e % n, (e + 1) % n);
+        if (e + 1 < n || self.full)
+            && self.is_hit(a)
+            && self.is_hit(b)
+            && !self.joined(a, b)
+            && self.continues(a, b)
+        {
+            t.bridges.push([self.point(a), self.point(b)]);
+        }
+    }
 }
 
 /// The piece that leaves a vertex.
@@ -360,8 +502,9 @@ fn despeckle(
     count
 }
 
-/// Split-and-merge over one run of returns `pts` (on the rays `dirs`): the run's vertices,
-/// its ends projected along their rays onto the fitted lines and corners where lines meet.
+/// Split-and-merge over one run of returns `pts` (on the rays `dirs`, `dphi` apart): the
+/// run's vertices, its ends projected along their rays onto the fitted lines and corners
+/// where lines meet.
 fn fit_run(pts: &[Point], dirs: &[Point], params: &IngestParams) -> Vec<Point> {
     let n = pts.len();
     if n == 1 {
@@ -580,7 +723,7 @@ mod tests {
     #[test]
     fn open_space_gives_range_frontiers_and_a_partial_turn_closes_at_the_scanner() {
         // A 270° scanner facing a wall 2 m ahead (+x), open elsewhere.
-        let n = 541;
+        let n = 541usize;
         let inc = 1.5 * PI / (n - 1) as f64;
         let s = LaserScan {
             angle_min: -0.75 * PI,

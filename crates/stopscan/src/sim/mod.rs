@@ -3,12 +3,14 @@
 //!
 //! - `team`: [`Team`], the one loop, with the [`Arena`] and [`Agent`] traits;
 //! - [`polygon`]: one polygon robot in it ([`polygon::run`]);
+//! - [`lidar`]: one polygon robot on raw laser scans, with drifting odometry ([`lidar::run`]);
 //! - [`grid`]: grid missions that resume ([`grid::Mission`]), on `GridWorld` as an [`Arena`];
 //! - [`corner`]: the corner Monte Carlo, with its own loop over hidden angles;
 //! - here: the [`Observer`] trait, [`Fanout`] and [`JsonLinesTrace`].
 
 pub mod corner;
 pub mod grid;
+pub mod lidar;
 pub mod polygon;
 mod team;
 

@@ -167,7 +167,7 @@ impl Lidar {
 }
 
 /// A standard normal draw (Box–Muller).
-fn gaussian(rng: &mut impl Rng) -> f64 {
+pub fn gaussian(rng: &mut impl Rng) -> f64 {
     let u1: f64 = rng.random::<f64>().max(f64::MIN_POSITIVE);
     let u2: f64 = rng.random();
     (-2.0 * u1.ln()).sqrt() * (std::f64::consts::TAU * u2).cos()
@@ -320,8 +320,8 @@ mod tests {
     fn the_grid_walk_finds_the_first_wall_as_brute_force_does() {
         let d = room();
         let w = Walls::of(&d);
-        for k in 0..3600 {
-            let a = k as f64 * std::f64::consts::TAU / 3600.0;
+        for k in 0..3600u32 {
+            let a = f64::from(k) * std::f64::consts::TAU / 3600.0;
             let u = [a.cos(), a.sin()];
             for o in [[1.0, 1.0], [7.5, 4.2], [4.5, 1.0], [0.0, 3.0]] {
                 let (g, b) = (w.cast(o, u, 100.0), brute(&d, o, u));

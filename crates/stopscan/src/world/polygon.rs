@@ -150,7 +150,7 @@ impl PolygonWorld {
                 // Strategies keep the planning clearance from all they have not seen free; the
                 // start must have it too, or no first move could be planned.
                 let need = footprint.planning_clearance(magnitude(domain.rings().iter().flatten()));
-                if boundary_distance(&domain, s) < need {
+                if domain.boundary_distance(s) < need {
                     return Err(WorldError::StartBlocked { start: s, clearance: need });
                 }
                 s
@@ -203,22 +203,47 @@ impl PolygonWorld {
         interior_point(&self.vis)
     }
 
+    /// Where the robot's reference point may move: the reachable configuration space with a
+    /// footprint, else the free space (for planning paths in the true world).
+    pub fn moves(&self) -> &Visibility {
+        self.reach.as_ref().map_or(&self.vis, |r| &r.cspace)
+    }
+
+    /// The point where a robot heading for `p` can stop: `p` itself when it lies in
+    /// [`moves`](Self::moves), else the nearest point inside it, if within `within` metres
+    /// (a local planner stops short of a wall the goal lies against); `None` beyond.
+    pub fn nearest_place(&self, p: Point, within: f64) -> Option<Point> {
+        use crate::geometry::Location;
+        let d = self.moves().domain();
+        if d.locate(p) == Location::Interior {
+            return Some(p);
+        }
+        let mut best: Option<(f64, Point)> = None;
+        for ring in d.rings() {
+            let n = ring.len();
+            for i in 0..n {
+                let (a, b) = (ring[i], ring[(i + 1) % n]);
+                let (dx, dy) = (b[0] - a[0], b[1] - a[1]);
+                let l2 = dx * dx + dy * dy;
+                let t = (((p[0] - a[0]) * dx + (p[1] - a[1]) * dy) / l2).clamp(0.0, 1.0);
+                let f = [a[0] + t * dx, a[1] + t * dy];
+                let dist = (p[0] - f[0]).hypot(p[1] - f[1]);
+                if dist <= within && best.is_none_or(|b| dist < b.0) {
+                    // Rings keep the space on their left: step a millimetre in.
+                    let l = l2.sqrt();
+                    best = Some((dist, [f[0] - 1e-3 * dy / l, f[1] + 1e-3 * dx / l]));
+                }
+            }
+        }
+        best.map(|b| b.1).filter(|q| d.locate(*q) == Location::Interior)
+    }
+
     /// Whether a straight move stays in the closed free space, or with a footprint in the
     /// reachable configuration space (exact against its polygon).
     pub fn can_move(&self, from: Point, to: Point) -> bool {
         let mesh = self.reach.as_ref().map_or(self.vis.mesh(), |r| r.cspace.mesh());
         segment_is_free(mesh, from, to)
     }
-}
-
-/// The distance from `p` to the nearest boundary edge of `domain`.
-fn boundary_distance(domain: &Domain, p: Point) -> f64 {
-    domain
-        .rings()
-        .iter()
-        .flat_map(|r| (0..r.len()).map(move |i| (r[i], r[(i + 1) % r.len()])))
-        .map(|(a, b)| crate::geometry::segment_distance(p, a, b))
-        .fold(f64::INFINITY, f64::min)
 }
 
 /// The centroid of a triangle of `cspace` farthest from the boundary of `domain` (the first
@@ -229,7 +254,7 @@ fn roomiest_centroid(cspace: &Visibility, domain: &Domain) -> Point {
     for t in &m.tri {
         let p = t.map(|i| m.points()[i as usize]);
         let c = [(p[0][0] + p[1][0] + p[2][0]) / 3.0, (p[0][1] + p[1][1] + p[2][1]) / 3.0];
-        let d = boundary_distance(domain, c);
+        let d = domain.boundary_distance(c);
         if d > best.0 {
             best = (d, c);
         }

@@ -240,13 +240,27 @@ impl View {
 
 /// Whether a robot driving straight from `at` to `z` stays at least `c` from the boundary of
 /// `polygon`, a region seen from `at` (walls and windows alike: beyond a window nothing is
-/// known). Floating point, like the clearance it checks.
+/// known). A robot that stands nearer than `c` to the boundary (on raw scans, where the drift
+/// or a scan's alignment put it) needs only keep 99% of the clearance it has. Floating point,
+/// like the clearance it checks.
 pub(super) fn keeps_clear(polygon: &[Point], at: Point, z: Point, c: f64) -> bool {
     let n = polygon.len();
+    let edges = || (0..n).map(|i| (polygon[i], polygon[(i + 1) % n]));
+    // The robot's own clearance, where it is below `c` (edges whose box lies farther than
+    // `c` from `at` along an axis cannot be nearer).
+    let own = edges()
+        .filter(|(p, q)| {
+            p[0].max(q[0]) >= at[0] - c
+                && p[0].min(q[0]) <= at[0] + c
+                && p[1].max(q[1]) >= at[1] - c
+                && p[1].min(q[1]) <= at[1] + c
+        })
+        .map(|(p, q)| segments_distance(at, at, p, q))
+        .fold(f64::INFINITY, f64::min);
+    let c = if own < c { 0.99 * own } else { c };
     let (x0, y0) = (at[0].min(z[0]) - c, at[1].min(z[1]) - c);
     let (x1, y1) = (at[0].max(z[0]) + c, at[1].max(z[1]) + c);
-    (0..n).all(|i| {
-        let (p, q) = (polygon[i], polygon[(i + 1) % n]);
+    edges().all(|(p, q)| {
         // An edge whose box lies more than `c` beyond the move's box along an axis is farther
         // than `c` from it: the exact distance is needed only for the others.
         p[0].max(q[0]) < x0
@@ -520,9 +534,18 @@ impl Known {
         };
         if checked < n {
             let mut covered = std::mem::take(&mut self.views[view].windows[k].covered);
+            let tol = self.sensor.wall_tolerance;
             for (j, v) in self.views.iter().enumerate().skip(checked) {
                 if j != view {
                     cover::side_cover(from, to, &v.polygon, v.bounds, &mut covered);
+                    // A wall another scan saw along the window (raw scans only).
+                    if tol > 0.0 && (v.near_bounds(from, tol) || v.near_bounds(to, tol)) {
+                        for b in &v.pieces {
+                            if let BoundaryPiece::Wall { from: p, to: q } = *b {
+                                cover::band_cover(from, to, p, q, tol, &mut covered);
+                            }
+                        }
+                    }
                 }
             }
             cover::merge(&mut covered);
