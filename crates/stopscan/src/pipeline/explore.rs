@@ -155,7 +155,8 @@ impl ExploreOptions {
 
     /// On raw scans ([`ExploreOptions::lidar`]): the robot as strategies plan with it (its
     /// clearance grown by [`planning_margin`]) and the simulated robot's setup (gaps on a wall
-    /// line shorter than the window rule's minimum are read as wall); else the robot as it is.
+    /// line shorter than the window rule's minimum, and at least 0.4 m, are read as wall);
+    /// else the robot as it is.
     ///
     /// # Panics
     /// Never: the clearance and the margin are finite and not negative.
@@ -167,7 +168,7 @@ impl ExploreOptions {
             ..setup.clone()
         };
         let mut s = LidarSetup::new(l, self.odometry_drift, self.seed);
-        s.ingest.bridge = setup.sensor.min_window;
+        s.ingest.bridge = setup.sensor.min_window.max(s.ingest.bridge);
         (plan, Some(s))
     }
 
