@@ -71,6 +71,15 @@ proptest::proptest! {
     }
 }
 
+/// A case the property test once found: a window passing nearer the viewpoint than the
+/// clearance must not let a move keep less (that relaxation is for raw scans only).
+#[test]
+fn an_office_case_keeps_the_clearance_near_a_window() {
+    let seed = 714;
+    let inst = office(1 + (seed % 4) as usize, (seed % 7) as usize, seed).unwrap();
+    check(&inst, 0.348_787_253_784_284_43, "office 714");
+}
+
 #[test]
 fn a_corridor_narrower_than_the_robot_is_never_entered() {
     // A 6 × 4 room; from its right wall a 0.3 m wide, 3 m long corridor leads to a 3 × 3

@@ -6,7 +6,7 @@ use std::collections::{BTreeSet, VecDeque};
 
 use serde::{Deserialize, Serialize};
 
-use super::known::{keeps_clear, reaches};
+use super::known::{keeps_clear, keeps_clear_leaving, reaches};
 use super::{PolygonFeedback, PolygonStrategy};
 use crate::algorithm::visibility::BoundaryPiece;
 use crate::kernel::{Point, magnitude};
@@ -191,6 +191,10 @@ pub enum InvalidExploreLiteParams {
 pub struct ExploreLite {
     params: ExploreLiteParams,
     footprint: Footprint,
+    /// The robot may stand nearer a wall than its clearance (raw scans): a trip out of there
+    /// keeps 99% of the clearance it has.
+    #[serde(default)]
+    relaxed: bool,
     raster: Raster,
     /// The centroids of blacklisted frontiers.
     blacklist: Vec<Point>,
@@ -246,6 +250,7 @@ impl ExploreLite {
         Self {
             params,
             footprint: setup.footprint.clone(),
+            relaxed: setup.sensor.wall_tolerance > 0.0,
             raster: Raster::new(params.resolution),
             blacklist: Vec::new(),
             scanned: BTreeSet::new(),
@@ -387,7 +392,12 @@ impl ExploreLite {
                     let q = r.centre([x, y]);
                     if q != at
                         && reaches(&view.polygon, at, q)
-                        && (c == 0.0 || keeps_clear(&view.polygon, at, q, c))
+                        && (c == 0.0
+                            || if self.relaxed {
+                                keeps_clear_leaving(&view.polygon, at, q, c)
+                            } else {
+                                keeps_clear(&view.polygon, at, q, c)
+                            })
                     {
                         out.push(Entry { cell: i, cost: r.step_cost(at, q), direct: true });
                     }

@@ -208,9 +208,14 @@ pub struct Skipped {
 
 impl View {
     /// Whether the robot, driving straight from the viewpoint to `z`, stays at least `c` from
-    /// the region's boundary (walls and windows alike: beyond a window nothing is known).
-    fn clear(&self, z: Point, c: f64) -> bool {
-        keeps_clear(&self.polygon, self.at, z, c)
+    /// the region's boundary (walls and windows alike: beyond a window nothing is known);
+    /// `relaxed` on raw scans ([`keeps_clear_leaving`]).
+    fn clear(&self, z: Point, c: f64, relaxed: bool) -> bool {
+        if relaxed {
+            keeps_clear_leaving(&self.polygon, self.at, z, c)
+        } else {
+            keeps_clear(&self.polygon, self.at, z, c)
+        }
     }
 
     /// Whether the straight move from the viewpoint to `z` stays strictly inside the region
@@ -240,27 +245,13 @@ impl View {
 
 /// Whether a robot driving straight from `at` to `z` stays at least `c` from the boundary of
 /// `polygon`, a region seen from `at` (walls and windows alike: beyond a window nothing is
-/// known). A robot that stands nearer than `c` to the boundary (on raw scans, where the drift
-/// or a scan's alignment put it) needs only keep 99% of the clearance it has. Floating point,
-/// like the clearance it checks.
+/// known). Floating point, like the clearance it checks.
 pub(super) fn keeps_clear(polygon: &[Point], at: Point, z: Point, c: f64) -> bool {
     let n = polygon.len();
-    let edges = || (0..n).map(|i| (polygon[i], polygon[(i + 1) % n]));
-    // The robot's own clearance, where it is below `c` (edges whose box lies farther than
-    // `c` from `at` along an axis cannot be nearer).
-    let own = edges()
-        .filter(|(p, q)| {
-            p[0].max(q[0]) >= at[0] - c
-                && p[0].min(q[0]) <= at[0] + c
-                && p[1].max(q[1]) >= at[1] - c
-                && p[1].min(q[1]) <= at[1] + c
-        })
-        .map(|(p, q)| segments_distance(at, at, p, q))
-        .fold(f64::INFINITY, f64::min);
-    let c = if own < c { 0.99 * own } else { c };
     let (x0, y0) = (at[0].min(z[0]) - c, at[1].min(z[1]) - c);
     let (x1, y1) = (at[0].max(z[0]) + c, at[1].max(z[1]) + c);
-    edges().all(|(p, q)| {
+    (0..n).all(|i| {
+        let (p, q) = (polygon[i], polygon[(i + 1) % n]);
         // An edge whose box lies more than `c` beyond the move's box along an axis is farther
         // than `c` from it: the exact distance is needed only for the others.
         p[0].max(q[0]) < x0
@@ -269,6 +260,26 @@ pub(super) fn keeps_clear(polygon: &[Point], at: Point, z: Point, c: f64) -> boo
             || p[1].min(q[1]) > y1
             || segments_distance(at, z, p, q) >= c
     })
+}
+
+/// [`keeps_clear`] for a robot that may stand nearer than `c` to the boundary (on raw scans,
+/// where the drift or a scan's alignment put it): the move needs only keep 99% of the
+/// clearance the robot has where it stands, when that is less than `c`.
+pub(super) fn keeps_clear_leaving(polygon: &[Point], at: Point, z: Point, c: f64) -> bool {
+    let n = polygon.len();
+    // The robot's own clearance, where it is below `c` (edges whose box lies farther than
+    // `c` from `at` along an axis cannot be nearer).
+    let own = (0..n)
+        .map(|i| (polygon[i], polygon[(i + 1) % n]))
+        .filter(|(p, q)| {
+            p[0].max(q[0]) >= at[0] - c
+                && p[0].min(q[0]) <= at[0] + c
+                && p[1].max(q[1]) >= at[1] - c
+                && p[1].min(q[1]) <= at[1] + c
+        })
+        .map(|(p, q)| segments_distance(at, at, p, q))
+        .fold(f64::INFINITY, f64::min);
+    keeps_clear(polygon, at, z, if own < c { 0.99 * own } else { c })
 }
 
 /// Whether the straight move from `at` (the viewpoint `polygon` was seen from) to `z` stays
@@ -293,6 +304,12 @@ impl Known {
     /// What a strategy knows before its first scan: the robot's footprint and sensor.
     pub(super) fn for_robot(setup: &RobotSetup) -> Self {
         Self { footprint: setup.footprint.clone(), sensor: setup.sensor, ..Self::default() }
+    }
+
+    /// Whether the robot may stand nearer a wall than its clearance (raw scans: the sensor
+    /// rule tolerates walls placed apart by noise), so that moves out of there are relaxed.
+    fn relaxed(&self) -> bool {
+        self.sensor.wall_tolerance > 0.0
     }
 
     /// The clearance planned moves keep near view `v` (0 for a point robot).
@@ -775,7 +792,7 @@ impl Known {
             return None;
         }
         let beside = self.beside_points(from, to, gap, c);
-        if let Some(&z) = beside.iter().find(|&&z| v.reaches(z) && v.clear(z, c)) {
+        if let Some(&z) = beside.iter().find(|&&z| v.reaches(z) && v.clear(z, c, self.relaxed())) {
             return Some((z, Vec::new()));
         }
         let a = Approach::new(&v.polygon, c);
@@ -860,7 +877,9 @@ impl Known {
         depths
             .iter()
             .map(|&s| [t.at[0] + s * n[0], t.at[1] + s * n[1]])
-            .filter(|&z| v.reaches(z) && (c == 0.0 || v.clear(z, c)) && !self.stood_at(z))
+            .filter(|&z| {
+                v.reaches(z) && (c == 0.0 || v.clear(z, c, self.relaxed())) && !self.stood_at(z)
+            })
             .collect()
     }
 
@@ -925,7 +944,7 @@ impl Known {
             .into_iter()
             .map(|l: f64| l.max(floor))
             .map(|l| [point[0] + l * (dx + d * inward[0]), point[1] + l * (dy + d * inward[1])])
-            .find(|&z| v.reaches(z) && (c == 0.0 || v.clear(z, c)));
+            .find(|&z| v.reaches(z) && (c == 0.0 || v.clear(z, c, self.relaxed())));
         Some(match at {
             Some(at) => Target { at, via: Vec::new(), anchor: None, off_gap: true, ..t },
             None => Target { off_gap: true, ..t },
