@@ -6,7 +6,7 @@
 //! - **Move.** The robot drives until odometry says it reached the goal; its true motion
 //!   differs by a random error that grows with the distance (`drift · d` metres, standard
 //!   deviation per axis, and [`HEADING_DRIFT`]` · drift · d` radians of heading). The true move is checked
-//!   exactly against the configuration space ([`drive`]): where the straight move would leave
+//!   exactly against the configuration space: where the straight move would leave
 //!   it, the navigation stack drives a short way round (and is charged for it), or stops
 //!   where the way is blocked; a goal the drift puts against a wall is reached as near as the
 //!   footprint allows. Odometry measures any shortfall.
