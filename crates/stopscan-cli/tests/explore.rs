@@ -380,6 +380,10 @@ fn raw_scans_from_a_simulated_lidar() {
     // The sensor's range and beams are the lidar's; the record measures the ground truth.
     assert_eq!(f(&r["sensor"], "range"), 20.0);
     assert_eq!(r["sensor"]["beams"], 360);
+    // The rule states how walls seen apart by noise close windows, at the planning margin.
+    let rule = r["sensor"]["window_rule"].as_str().unwrap();
+    assert!(rule.contains("wall_tolerance"), "{rule}");
+    assert!(rule.contains(&format!("{} m", f(raw, "planning_margin"))), "{rule}");
     assert!(f(&r["robot"], "coverage_of_reachable") > 0.99, "{r}");
     // Byte-identical for the same seed.
     assert_eq!(run("5").1, bytes);

@@ -261,12 +261,21 @@ impl Sensor {
             "a window is worth a trip when its length is at least max({})",
             terms.join(", ")
         );
-        if self.has_pocket_term() {
+        let windows = if self.has_pocket_term() {
             format!(
                 "{windows}, and when what lies behind it is not a pocket enclosed by what was \
                  seen smaller than both {} of the area seen so far (min_pocket) and {} m² \
                  (pocket_cap)",
                 self.min_pocket, self.pocket_cap
+            )
+        } else {
+            windows
+        };
+        if self.wall_tolerance > 0.0 {
+            format!(
+                "{windows}; a window part along which another scan saw a wall within {} m \
+                 (wall_tolerance: the same wall, placed apart by noise) is closed",
+                self.wall_tolerance
             )
         } else {
             windows
