@@ -42,10 +42,7 @@ fn options(strategy: &str, seed: u64) -> ExploreOptions {
 fn seen_share(env: &Environment, stops: &[Point], range: f64, step: f64) -> f64 {
     let d = &env.domain;
     let walls = Walls::of(d);
-    let (lo, hi) =
-        d.rings()[0].iter().fold(([f64::INFINITY; 2], [f64::NEG_INFINITY; 2]), |(lo, hi), p| {
-            ([lo[0].min(p[0]), lo[1].min(p[1])], [hi[0].max(p[0]), hi[1].max(p[1])])
-        });
+    let [lo, hi] = stopscan::algorithm::cover::bounds_of(&d.rings()[0]);
     let (mut inside, mut seen) = (0usize, 0usize);
     let mut y = lo[1] + 0.5 * step;
     while y < hi[1] {

@@ -51,9 +51,7 @@ proptest! {
         range in prop::sample::select(vec![6.0f64, 20.0]),
     ) {
         let d = domain(kind, seed);
-        let (lo, hi) = d.rings()[0].iter().fold(([f64::INFINITY; 2], [f64::NEG_INFINITY; 2]), |(lo, hi), p| {
-            ([lo[0].min(p[0]), lo[1].min(p[1])], [hi[0].max(p[0]), hi[1].max(p[1])])
-        });
+        let [lo, hi] = stopscan::algorithm::cover::bounds_of(&d.rings()[0]);
         let at = [lo[0] + u * (hi[0] - lo[0]), lo[1] + v * (hi[1] - lo[1])];
         prop_assume!(d.locate(at) == Location::Interior && d.boundary_distance(at) > 0.1);
         let lidar = Lidar { beams, range_max: range, sigma: 0.0, dropout: 0.0, spurious: 0.0, ..Lidar::default() };

@@ -14,8 +14,9 @@ use serde::Serialize;
 
 use crate::geometry::{Domain, Location};
 use crate::protocol::laser::{Pose, wrap};
-use crate::sensing::icp::{self, IcpParams, Prior, WallMap};
-use crate::sensing::ingest::{IngestParams, ingest};
+use crate::sensing::icp::{self, Prior, WallMap};
+use crate::sensing::ingest::ingest;
+use crate::sim::lidar::LidarSetup;
 use crate::world::lidar::{Lidar, Walls};
 
 /// A trial converged when the aligned position is within this of the truth, metres.
@@ -61,9 +62,10 @@ pub fn scan_pairs(
 ) -> ScanPairs {
     let walls = Walls::of(domain);
     let mut rng = ChaCha8Rng::seed_from_u64(seed);
-    let params = IngestParams::for_noise(lidar.sigma);
-    let icp_params = IcpParams { sigma: lidar.sigma, ..IcpParams::default() };
-    let (lo, hi) = bounds(domain);
+    // Read and aligned as the raw-scan driver does.
+    let setup = LidarSetup::new(*lidar, 0.0, seed);
+    let (params, icp_params) = (setup.ingest, setup.icp);
+    let [lo, hi] = crate::algorithm::cover::bounds_of(&domain.rings()[0]);
     let clear =
         |p: [f64; 2]| domain.locate(p) == Location::Interior && domain.boundary_distance(p) > 0.25;
     let (mut ingest_s, mut icp_s) = (0.0, 0.0);
@@ -131,12 +133,6 @@ pub fn scan_pairs(
         ingest_ms: 1e3 * ingest_s / done.max(1) as f64,
         icp_ms: 1e3 * icp_s / done.max(1) as f64,
     }
-}
-
-fn bounds(d: &Domain) -> ([f64; 2], [f64; 2]) {
-    d.rings()[0].iter().fold(([f64::INFINITY; 2], [f64::NEG_INFINITY; 2]), |(lo, hi), p| {
-        ([lo[0].min(p[0]), lo[1].min(p[1])], [hi[0].max(p[0]), hi[1].max(p[1])])
-    })
 }
 
 /// Whether `b` is in sight of `a` (no wall within the segment).

@@ -12,6 +12,21 @@ pub use crate::kernel::Point;
 pub use domain::{Domain, EdgeId, InvalidEnvironment, Location};
 pub use frame::Frame;
 
+/// Where the ray from `o` along `u` first meets the closed segment `a b`, as the parameter `t`
+/// of `o + t·u` (`t > 0`; a distance when `u` is a unit vector); `None` when it misses or
+/// runs parallel to it. Floating point.
+pub fn ray_segment(o: Point, u: Point, a: Point, b: Point) -> Option<f64> {
+    let s = [b[0] - a[0], b[1] - a[1]];
+    let den = u[0] * s[1] - u[1] * s[0];
+    if den == 0.0 {
+        return None;
+    }
+    let w = [a[0] - o[0], a[1] - o[1]];
+    let t = (w[0] * s[1] - w[1] * s[0]) / den;
+    let v = (w[0] * u[1] - w[1] * u[0]) / den;
+    (t > 0.0 && (0.0..=1.0).contains(&v)).then_some(t)
+}
+
 /// The distance from `p` to the closed segment `a b` (floating point).
 pub fn segment_distance(p: Point, a: Point, b: Point) -> f64 {
     let (dx, dy) = (b[0] - a[0], b[1] - a[1]);

@@ -5,7 +5,7 @@ use std::str::FromStr;
 
 use rand::{Rng, RngExt};
 
-use crate::geometry::Domain;
+use crate::geometry::{Domain, ray_segment};
 use crate::kernel::Point;
 use crate::protocol::laser::{LaserScan, Pose};
 
@@ -248,7 +248,8 @@ impl Walls {
         loop {
             if i >= 0 && j >= 0 && (i as usize) < self.dims[0] && (j as usize) < self.dims[1] {
                 for &id in &self.cells[j as usize * self.dims[0] + i as usize] {
-                    if let Some(h) = hit(o, u, self.edges[id as usize]) {
+                    let [a, b] = self.edges[id as usize];
+                    if let Some(h) = ray_segment(o, u, a, b) {
                         best = best.min(h);
                     }
                 }
@@ -279,20 +280,6 @@ impl Walls {
     }
 }
 
-/// Where the ray from `o` along `u` meets the segment `e`, as a distance (ahead, > 0).
-fn hit(o: Point, u: Point, e: [Point; 2]) -> Option<f64> {
-    let (a, b) = (e[0], e[1]);
-    let s = [b[0] - a[0], b[1] - a[1]];
-    let den = u[0] * s[1] - u[1] * s[0];
-    if den == 0.0 {
-        return None;
-    }
-    let w = [a[0] - o[0], a[1] - o[1]];
-    let t = (w[0] * s[1] - w[1] * s[0]) / den;
-    let v = (w[0] * u[1] - w[1] * u[0]) / den;
-    (t > 0.0 && (0.0..=1.0).contains(&v)).then_some(t)
-}
-
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -312,7 +299,7 @@ mod tests {
         d.rings()
             .iter()
             .flat_map(|r| (0..r.len()).map(move |i| [r[i], r[(i + 1) % r.len()]]))
-            .filter_map(|e| hit(o, u, e))
+            .filter_map(|e| ray_segment(o, u, e[0], e[1]))
             .reduce(f64::min)
     }
 

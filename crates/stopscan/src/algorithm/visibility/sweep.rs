@@ -45,7 +45,7 @@ pub fn visible_area_within(domain: &Domain, q: Point, range: f64) -> f64 {
         let d = [mid.cos(), mid.sin()];
         let mut best: Option<(f64, Point, Point)> = None;
         for &(p0, p1) in &edges {
-            if let Some(t) = ray_segment(q, d, p0, p1)
+            if let Some(t) = crate::geometry::ray_segment(q, d, p0, p1)
                 && best.is_none_or(|b| t < b.0)
             {
                 best = Some((t, p0, p1));
@@ -95,18 +95,6 @@ fn circle_line(q: Point, r: f64, a: Point, b: Point) -> Vec<f64> {
         .iter()
         .map(|t| (fy + t * dy).atan2(fx + t * dx))
         .collect()
-}
-
-fn ray_segment(q: Point, d: Point, a: Point, b: Point) -> Option<f64> {
-    let e = [b[0] - a[0], b[1] - a[1]];
-    let den = d[0] * e[1] - d[1] * e[0];
-    if den == 0.0 {
-        return None;
-    }
-    let w = [a[0] - q[0], a[1] - q[1]];
-    let t = (w[0] * e[1] - w[1] * e[0]) / den;
-    let u = (w[0] * d[1] - w[1] * d[0]) / den;
-    (t > 0.0 && (0.0..=1.0).contains(&u)).then_some(t)
 }
 
 fn ray_line(q: Point, d: Point, a: Point, b: Point) -> Point {
