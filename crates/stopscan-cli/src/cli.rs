@@ -104,6 +104,33 @@ pub(crate) enum Command {
     Reproduce(ReproduceArgs),
     /// Throughput figures as JSON.
     Bench(BenchArgs),
+    /// Drive a real robot: speak protocol stopscan/1 (line-delimited JSON, docs/protocol.md) on
+    /// standard input and output, or on TCP with --listen; resumable from a journal.
+    Serve(ServeArgs),
+}
+
+#[derive(Debug, Args)]
+pub(crate) struct ServeArgs {
+    /// Listen on this TCP address (`127.0.0.1:7878`; port 0 picks a free one, printed on
+    /// standard error) instead of standard input and output. One session per server; a robot
+    /// may reconnect and go on; the server exits once the session is done and the robot
+    /// has closed the connection.
+    #[arg(long)]
+    pub(crate) listen: Option<String>,
+    /// Append every step to this new journal file, written before each reply.
+    #[arg(long, conflicts_with = "resume")]
+    pub(crate) journal: Option<PathBuf>,
+    /// Go on from this journal after a crash: its steps are replayed (each reply checked),
+    /// then new steps are appended to it.
+    #[arg(long)]
+    pub(crate) resume: Option<PathBuf>,
+    /// Also sync each journal line to the disk before replying (safe against a power cut;
+    /// about a millisecond per step).
+    #[arg(long)]
+    pub(crate) fsync: bool,
+    /// The most scans a session may take; then it is done with reason "limit".
+    #[arg(long, default_value_t = stopscan::sim::lidar::MAX_SCANS, value_parser = clap::value_parser!(u64).range(1..))]
+    pub(crate) max_scans: u64,
 }
 
 #[derive(Debug, Subcommand)]

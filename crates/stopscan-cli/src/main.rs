@@ -4,7 +4,7 @@
 //!
 //! - `cli`: the command line (clap), with help texts from the library's registries;
 //! - one module per command: `explore` (and the main job), `generate`, `corner`, `reproduce`,
-//!   `visibility`, `map` (`map import`), `roi`, `bench`;
+//!   `visibility`, `map` (`map import`), `roi`, `bench`, `serve`;
 //! - `output`: tables, JSON, the progress spinner and bars; `limits`: the soft size limits.
 
 mod bench;
@@ -17,6 +17,7 @@ mod map;
 mod output;
 mod reproduce;
 mod roi;
+mod serve;
 mod visibility;
 
 use std::io::Write;
@@ -103,6 +104,7 @@ fn run(args: &cli::Cli) -> anyhow::Result<()> {
         Some(cli::Command::Roi(a)) => roi::run(a, g),
         Some(cli::Command::Reproduce(r)) => reproduce::run(r, g),
         Some(cli::Command::Bench(b)) => bench::run(b, g),
+        Some(cli::Command::Serve(a)) => serve::run(a, g),
     }
 }
 
@@ -152,6 +154,10 @@ fn check_targets(args: &cli::Cli) -> anyhow::Result<()> {
         },
         Some(Command::Visibility(_) | Command::Bench(_)) => file(out),
         Some(Command::Reproduce(_)) => out.map_or(Ok(()), ensure_dir),
+        Some(Command::Serve(a)) => {
+            unused("serve")?;
+            file(a.journal.as_deref())
+        }
         Some(Command::Roi(a)) => {
             file(a.trace.as_deref())?;
             if a.resume.is_some() {

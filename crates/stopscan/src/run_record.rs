@@ -83,6 +83,10 @@ pub struct SensorInfo {
     /// `min_pocket` (absent: no pocket term).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub windows_into_small_pockets: Option<usize>,
+    /// Window parts dropped because a move to the viewpoint planned for them failed (absent:
+    /// no move failed).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub windows_dropped_by_failed_moves: Option<usize>,
 }
 
 impl SensorInfo {
@@ -100,6 +104,8 @@ impl SensorInfo {
             windows_below_rule: rule.then_some(skipped.below_rule),
             windows_below_rule_length: rule.then_some(skipped.below_rule_length),
             windows_into_small_pockets: sensor.has_pocket_term().then_some(skipped.small_pocket),
+            windows_dropped_by_failed_moves: (skipped.move_failed > 0)
+                .then_some(skipped.move_failed),
         }
     }
 }

@@ -100,8 +100,8 @@ impl Default for ExploreOptions {
 /// read from noisy scans, and a pose known only to ICP's precision, put the true walls up to
 /// this much nearer than planned (3σ of the range noise plus a pose error of a few
 /// centimetres after alignment).
-pub fn planning_margin(lidar: &crate::world::lidar::Lidar) -> f64 {
-    0.05 + lidar.sigma
+pub fn planning_margin(sigma: f64) -> f64 {
+    0.05 + sigma
 }
 
 /// The default of the window rule's `min_window`: a window narrower than the robot, or no
@@ -148,7 +148,7 @@ impl ExploreOptions {
                     .min_pocket
                     .unwrap_or_else(|| default_min_pocket(&self.footprint, env.cell_size)),
                 pocket_cap: self.pocket_cap,
-                wall_tolerance: self.lidar.as_ref().map_or(0.0, planning_margin),
+                wall_tolerance: self.lidar.map_or(0.0, |l| planning_margin(l.sigma)),
             },
         }
     }
@@ -163,7 +163,7 @@ impl ExploreOptions {
     pub fn raw_scan_setup(&self, setup: &RobotSetup) -> (RobotSetup, Option<LidarSetup>) {
         let Some(l) = self.lidar else { return (setup.clone(), None) };
         let plan = RobotSetup {
-            footprint: Footprint::disc(setup.footprint.clearance() + planning_margin(&l))
+            footprint: Footprint::disc(setup.footprint.clearance() + planning_margin(l.sigma))
                 .expect("a finite clearance and margin"),
             ..setup.clone()
         };
@@ -551,7 +551,7 @@ pub fn explore(
         record.robot = Some(robot_info(&world, reach, &setup, &run, &record, &skipped, seen));
     }
     if let (Some(r), Some(l)) = (&raw, &lidar) {
-        let margin = o.lidar.as_ref().map_or(0.0, planning_margin);
+        let margin = o.lidar.map_or(0.0, |l| planning_margin(l.sigma));
         record.raw_scans = Some(crate::run_record::RawScanInfo::of(r, l, margin));
     }
     let mut record = record.in_frame(&frame);

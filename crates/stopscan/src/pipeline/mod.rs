@@ -24,6 +24,7 @@ pub mod explore;
 pub mod floors;
 pub mod mission;
 pub mod reproduce;
+pub mod serve;
 pub mod sweep;
 
 /// What a pipeline is doing, one short line at a time, for a progress display (the same

@@ -188,6 +188,37 @@ pub enum Feedback<P, O> {
     Arrived,
     /// The scan it asked for.
     Scanned(O),
+    /// The robot could not reach the place it asked for and stopped at `at`. The strategy
+    /// drops (blacklists) that goal and goes on.
+    MoveFailed {
+        /// Where the robot stands now.
+        at: P,
+        /// Why the move failed.
+        reason: MoveFailure,
+    },
+}
+
+/// Why a move failed, as a navigation stack reports it (nav2's goal outcomes).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Serialize, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum MoveFailure {
+    /// The way is blocked, or the goal lies in an obstacle or where the robot does not fit.
+    Blocked,
+    /// The navigation stack gave up (nav2's `ABORTED`).
+    Aborted,
+    /// The move took too long (no progress within the navigation stack's timeout).
+    TimedOut,
+}
+
+impl MoveFailure {
+    /// The name used in the protocol and in traces.
+    pub fn name(self) -> &'static str {
+        match self {
+            Self::Blocked => "blocked",
+            Self::Aborted => "aborted",
+            Self::TimedOut => "timed_out",
+        }
+    }
 }
 
 #[cfg(test)]
@@ -213,10 +244,11 @@ mod tests {
         struct Seen {
             area: f64,
         }
-        let events: [Feedback<[f64; 2], Seen>; 3] = [
+        let events: [Feedback<[f64; 2], Seen>; 4] = [
             Feedback::Start { at: [1.5, -2.0] },
             Feedback::Arrived,
             Feedback::Scanned(Seen { area: 2.5 }),
+            Feedback::MoveFailed { at: [0.5, 0.25], reason: MoveFailure::TimedOut },
         ];
         for e in events {
             let text = serde_json::to_string(&e).unwrap();
@@ -225,6 +257,12 @@ mod tests {
         }
         let cell: Feedback<[i64; 2], ()> = Feedback::Start { at: [3, 4] };
         assert_eq!(serde_json::to_string(&cell).unwrap(), r#"{"event":"start","at":[3,4]}"#);
+        let failed: Feedback<[i64; 2], ()> =
+            Feedback::MoveFailed { at: [1, 2], reason: MoveFailure::Blocked };
+        assert_eq!(
+            serde_json::to_string(&failed).unwrap(),
+            r#"{"event":"move_failed","at":[1,2],"reason":"blocked"}"#
+        );
     }
 
     #[test]

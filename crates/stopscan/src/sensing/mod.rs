@@ -3,7 +3,10 @@
 //! - [`ingest`]: one laser scan and its pose become a star-shaped region with labelled walls,
 //!   windows and range frontiers (REP 117 cleaning, adaptive breakpoints, split-and-merge);
 //! - [`icp`]: point-to-line ICP that aligns a scan to the walls already seen, with a test for
-//!   degenerate geometry (a featureless corridor) that falls back to odometry.
+//!   degenerate geometry (a featureless corridor) that falls back to odometry;
+//! - [`mapper`]: successive scans read, aligned and placed in one map frame (the walls seen so
+//!   far), as the simulator and `stopscan serve` both do.
 
 pub mod icp;
 pub mod ingest;
+pub mod mapper;

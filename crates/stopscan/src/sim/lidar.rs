@@ -26,11 +26,12 @@ use super::polygon::{PolygonRun, PolygonSimError};
 use super::{Observer, SimError};
 use crate::algorithm::shortest_path::PathPlanner;
 use crate::kernel::Point;
-use crate::protocol::laser::{Pose, wrap};
+use crate::protocol::laser::{LaserScan, Pose, wrap};
 use crate::protocol::polygon::PolygonObservation;
-use crate::protocol::{Action, CostModel, Feedback, Tally};
-use crate::sensing::icp::{self, Alignment, IcpParams, WallMap};
-use crate::sensing::ingest::{Cleaning, IngestParams, ingest};
+use crate::protocol::{Action, CostModel, Feedback, MoveFailure, Tally};
+use crate::sensing::icp::{Alignment, IcpParams};
+use crate::sensing::ingest::{Cleaning, IngestParams};
+use crate::sensing::mapper::{Mapper, MapperParams};
 use crate::strategy::polygon::PolygonStrategy;
 use crate::world::lidar::{Lidar, Walls, gaussian};
 use crate::world::polygon::PolygonWorld;
@@ -54,16 +55,17 @@ pub struct LidarSetup {
 impl LidarSetup {
     /// A setup for `lidar` and `drift`, reading scans with the lidar's noise, seeded.
     pub fn new(lidar: Lidar, drift: f64, seed: u64) -> Self {
-        Self {
-            lidar,
-            drift,
-            ingest: IngestParams::for_noise(lidar.sigma),
-            icp: IcpParams {
-                huber: (3.0 * lidar.sigma).max(0.02),
-                sigma: lidar.sigma,
-                ..IcpParams::default()
-            },
-            seed,
+        let m = MapperParams::for_sensor(lidar.sigma, drift, HEADING_DRIFT * drift);
+        Self { lidar, drift, ingest: m.ingest, icp: m.icp, seed }
+    }
+
+    /// How the robot's scans are read and aligned.
+    pub fn mapper_params(&self) -> MapperParams {
+        MapperParams {
+            ingest: self.ingest,
+            icp: self.icp,
+            drift: self.drift,
+            heading_drift: HEADING_DRIFT * self.drift,
         }
     }
 }
@@ -120,25 +122,33 @@ pub const HEADING_DRIFT: f64 = 0.1;
 /// metres; farther, the goal is refused.
 pub const STOP_SHORT: f64 = 0.5;
 
-/// The legs a simulated robot truly drives from `from` toward `goal`: straight when the move
-/// stays in the space it may move in; else the shortest way round to the goal (or to the
-/// nearest place within [`STOP_SHORT`] of it when the goal lies against a wall) when that is
-/// at most 1.5 times the straight distance plus a metre; else straight toward the goal until
-/// the way is blocked.
-fn drive(world: &PolygonWorld, planner: &PathPlanner<'_>, from: Point, goal: Point) -> Vec<Point> {
+/// The legs a simulated robot truly drives from `from` toward `goal`, and whether it got
+/// there: straight when the move stays in the space it may move in; else the shortest way
+/// round to the goal (or to the nearest place within [`STOP_SHORT`] of it when the goal lies
+/// against a wall) when that is at most 1.5 times the straight distance plus a metre; else
+/// straight toward the goal until the way is blocked (a failed move). A goal with no place
+/// within [`STOP_SHORT`] (inside an obstacle, or where the footprint does not fit) is
+/// refused: the robot does not move.
+fn drive(
+    world: &PolygonWorld,
+    planner: &PathPlanner<'_>,
+    from: Point,
+    goal: Point,
+) -> (Vec<Point>, bool) {
     if world.can_move(from, goal) {
-        return vec![from, goal];
+        return (vec![from, goal], true);
     }
     let dist = |a: Point, b: Point| (b[0] - a[0]).hypot(b[1] - a[1]);
-    if let Some(g) = world.nearest_place(goal, STOP_SHORT) {
-        if world.can_move(from, g) {
-            return vec![from, g];
-        }
-        if let Some(p) = planner.shortest_path(from, g)
-            && p.length <= 1.5 * dist(from, g) + 1.0
-        {
-            return p.points;
-        }
+    let Some(g) = world.nearest_place(goal, STOP_SHORT) else {
+        return (vec![from], false);
+    };
+    if world.can_move(from, g) {
+        return (vec![from, g], true);
+    }
+    if let Some(p) = planner.shortest_path(from, g)
+        && p.length <= 1.5 * dist(from, g) + 1.0
+    {
+        return (p.points, true);
     }
     // Blocked on the way: the last free point of the straight move, a millimetre back.
     let (mut lo, mut hi) = (0.0f64, 1.0f64);
@@ -152,18 +162,108 @@ fn drive(world: &PolygonWorld, planner: &PathPlanner<'_>, from: Point, goal: Poi
         }
     }
     let back = (lo - 1e-3 / dist(from, goal).max(1e-3)).max(0.0);
-    vec![from, at(back)]
+    (vec![from, at(back)], false)
 }
-
-/// The wall map keeps walls in pieces of at most this length, metres.
-pub const MAP_PIECE: f64 = 0.5;
-
-/// A wall piece within this distance of a mapped wall of the same orientation is that wall,
-/// seen again, metres: it is not added twice.
-pub const MAP_SAME_WALL: f64 = 0.3;
 
 /// The most scans a raw-scan run may take before it is cut short as making no progress.
 pub const MAX_SCANS: u64 = 20_000;
+
+/// A simulated robot in a polygon world: a true pose, an odometry pose that drifts from it,
+/// and a lidar. It knows nothing of any map: it drives to goals given in its odometry frame
+/// and scans where it truly stands. The simulator drives it, and so does a robot client of
+/// `stopscan serve` in the tests.
+#[derive(Debug)]
+pub struct SimRobot<'a> {
+    world: &'a PolygonWorld,
+    walls: Walls,
+    planner: PathPlanner<'a>,
+    lidar: Lidar,
+    drift: f64,
+    rng: ChaCha8Rng,
+    truth: Pose,
+    odometry: Pose,
+}
+
+/// How a drive ended.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Drive {
+    /// The legs truly driven (the first point is where the robot stood).
+    pub legs: Vec<Point>,
+    /// Their length, metres.
+    pub metres: f64,
+    /// Why the robot did not reach the goal, if it did not.
+    pub failed: Option<MoveFailure>,
+}
+
+impl<'a> SimRobot<'a> {
+    /// A robot at `start`, heading 0, its odometry frame the world's; its lidar's noise and its
+    /// odometry's drift seeded by `seed`.
+    pub fn new(world: &'a PolygonWorld, start: Point, lidar: Lidar, drift: f64, seed: u64) -> Self {
+        Self {
+            world,
+            walls: Walls::of(world.domain()),
+            planner: PathPlanner::new(world.moves()),
+            lidar,
+            drift,
+            rng: ChaCha8Rng::seed_from_u64(seed),
+            truth: Pose::new(start, 0.0),
+            odometry: Pose::new(start, 0.0),
+        }
+    }
+
+    /// Where the robot truly is.
+    pub fn truth(&self) -> Pose {
+        self.truth
+    }
+
+    /// Where odometry says it is.
+    pub fn odometry(&self) -> Pose {
+        self.odometry
+    }
+
+    /// Sets the odometry pose (a localiser's correction).
+    pub fn set_odometry(&mut self, pose: Pose) {
+        self.odometry = pose;
+    }
+
+    /// Drives toward `goal` (odometry frame) as a navigation stack would, on drifting
+    /// odometry: the true motion differs from the commanded one by a random error that grows
+    /// with the distance ([`HEADING_DRIFT`]); the true move is checked exactly against the
+    /// space the footprint may move in ([`drive`]); odometry measures any shortfall.
+    pub fn drive(&mut self, goal: Point) -> Drive {
+        let odo = self.odometry;
+        let d = (goal[0] - odo.x).hypot(goal[1] - odo.y);
+        // The motion odometry reports, in the robot's frame, and the true one.
+        let step = odo.inverse().compose(&Pose::new(goal, odo.theta));
+        let s = self.drift * d;
+        let rng = &mut self.rng;
+        let (ex, ey, et) =
+            (s * gaussian(rng), s * gaussian(rng), HEADING_DRIFT * s * gaussian(rng));
+        let moved = Pose { x: step.x + ex, y: step.y + ey, theta: step.theta + et };
+        let mut next = self.truth.compose(&moved);
+        let (legs, reached) = drive(self.world, &self.planner, self.truth.at(), next.at());
+        let stop = *legs.last().expect("a drive has an end");
+        if legs.len() == 1 {
+            // Refused: the robot did not move.
+            return Drive { legs, metres: 0.0, failed: Some(MoveFailure::Blocked) };
+        }
+        let short = [stop[0] - next.x, stop[1] - next.y];
+        let (sin, cos) = (odo.theta - next.theta).sin_cos();
+        let to =
+            [goal[0] + cos * short[0] - sin * short[1], goal[1] + sin * short[0] + cos * short[1]];
+        (next.x, next.y) = (stop[0], stop[1]);
+        let metres: f64 =
+            legs.windows(2).map(|w| (w[1][0] - w[0][0]).hypot(w[1][1] - w[0][1])).sum();
+        self.truth = next;
+        self.odometry = Pose::new(to, odo.theta);
+        Drive { legs, metres, failed: (!reached).then_some(MoveFailure::Blocked) }
+    }
+
+    /// A scan from where the robot truly stands.
+    pub fn scan(&mut self) -> LaserScan {
+        self.lidar.scan(&self.walls, &self.truth, &mut self.rng)
+    }
+}
 
 /// Runs `strategy` in `world` from `start` on raw scans ([`LidarSetup`]), until it is done.
 ///
@@ -185,12 +285,15 @@ pub fn run(
         match strategy.act(&feedback) {
             Action::Done => break Ok(()),
             Action::MoveTo { to } => {
-                let (to, metres) = robot.drive_to(to);
-                if observer.on_move(0, &to, metres).is_break() {
+                let (at, metres, failed) = robot.drive_to(to);
+                if observer.on_move(0, &at, metres).is_break() {
                     robot.out.truth.interrupted = true;
                     break Ok(());
                 }
-                feedback = Feedback::Arrived;
+                feedback = match failed {
+                    None => Feedback::Arrived,
+                    Some(reason) => Feedback::MoveFailed { at, reason },
+                };
             }
             Action::Scan => {
                 let observation = match robot.scan(&name, cost) {
@@ -219,16 +322,11 @@ pub fn run(
     }
 }
 
-/// The simulated robot: its true and believed poses, its sensor and its wall map.
+/// The simulated robot, what it has mapped, and the run's record.
 struct Robot<'a> {
     world: &'a PolygonWorld,
-    walls: Walls,
-    planner: PathPlanner<'a>,
-    setup: &'a LidarSetup,
-    rng: ChaCha8Rng,
-    map: WallMap,
-    truth: Pose,
-    belief: Pose,
+    sim: SimRobot<'a>,
+    mapper: Mapper,
     tally: Tally,
     /// Metres driven since the last scan: how far odometry may have drifted.
     since_scan: f64,
@@ -240,13 +338,8 @@ impl<'a> Robot<'a> {
         let tally = Tally::default();
         Self {
             world,
-            walls: Walls::of(world.domain()),
-            planner: PathPlanner::new(world.moves()),
-            setup,
-            rng: ChaCha8Rng::seed_from_u64(setup.seed),
-            map: WallMap::new(),
-            truth: Pose::new(start, 0.0),
-            belief: Pose::new(start, 0.0),
+            sim: SimRobot::new(world, start, setup.lidar, setup.drift, setup.seed),
+            mapper: Mapper::new(setup.mapper_params()),
             tally,
             since_scan: 0.0,
             out: LidarRun {
@@ -265,36 +358,20 @@ impl<'a> Robot<'a> {
         }
     }
 
-    /// Drives toward `to` (map frame) as the navigation stack would, on drifting odometry:
-    /// where odometry says the robot ended, and the metres truly driven.
-    fn drive_to(&mut self, to: Point) -> (Point, f64) {
-        let belief = self.belief;
-        let d = (to[0] - belief.x).hypot(to[1] - belief.y);
-        self.since_scan += d;
-        // The motion odometry reports, in the robot's frame, and the true one.
-        let step = belief.inverse().compose(&Pose::new(to, belief.theta));
-        let s = self.setup.drift * d;
-        let rng = &mut self.rng;
-        let (ex, ey, et) =
-            (s * gaussian(rng), s * gaussian(rng), HEADING_DRIFT * s * gaussian(rng));
-        let moved = Pose { x: step.x + ex, y: step.y + ey, theta: step.theta + et };
-        let mut next = self.truth.compose(&moved);
-        // Where the robot truly ends ([`drive`]); odometry measures any shortfall.
-        let legs = drive(self.world, &self.planner, self.truth.at(), next.at());
-        let stop = *legs.last().expect("a drive has an end");
-        let short = [stop[0] - next.x, stop[1] - next.y];
-        let (sin, cos) = (belief.theta - next.theta).sin_cos();
-        let to = [to[0] + cos * short[0] - sin * short[1], to[1] + sin * short[0] + cos * short[1]];
-        (next.x, next.y) = (stop[0], stop[1]);
-        let metres: f64 =
-            legs.windows(2).map(|w| (w[1][0] - w[0][0]).hypot(w[1][1] - w[0][1])).sum();
-        self.out.truth.path.extend_from_slice(&legs[1..]);
-        self.tally.moves += 1;
-        self.tally.distance += metres;
-        self.truth = next;
-        self.belief = Pose::new(to, belief.theta);
-        self.out.believed_path.push(to);
-        (to, metres)
+    /// Drives toward `to` (map frame): where the robot believes it ended, the metres truly
+    /// driven, and why it did not get there if it did not.
+    fn drive_to(&mut self, to: Point) -> (Point, f64, Option<MoveFailure>) {
+        let from = self.sim.odometry().at();
+        let drive = self.sim.drive(to);
+        let at = self.sim.odometry().at();
+        self.since_scan += (at[0] - from[0]).hypot(at[1] - from[1]);
+        self.out.truth.path.extend_from_slice(&drive.legs[1..]);
+        if drive.legs.len() > 1 {
+            self.tally.moves += 1;
+            self.tally.distance += drive.metres;
+            self.out.believed_path.push(at);
+        }
+        (at, drive.metres, drive.failed)
     }
 
     /// Scans from the true pose, reads the scan at the belief, aligns it, and records the
@@ -304,7 +381,8 @@ impl<'a> Robot<'a> {
         name: &str,
         cost: &CostModel,
     ) -> Result<PolygonObservation, PolygonSimError> {
-        let at = self.belief.at();
+        let odometry = self.sim.odometry();
+        let at = odometry.at();
         if let Some(k) = self.out.observations.iter().position(|o| o.at == at) {
             return Err(SimError::NoProgress {
                 strategy: name.into(),
@@ -317,39 +395,17 @@ impl<'a> Robot<'a> {
         if self.tally.scans >= MAX_SCANS {
             return Err(SimError::TooLong(name.into(), MAX_SCANS));
         }
-        let setup = self.setup;
-        let scan = setup.lidar.scan(&self.walls, &self.truth, &mut self.rng);
-        // Read in the scanner's frame, aligned, then placed at the belief.
-        let local = ingest(&scan, &Pose::default(), &setup.ingest)
-            .expect("the simulated lidar's scans are valid");
-        let odometry = self.belief;
-        let prior = icp::Prior {
-            position: (setup.drift * self.since_scan).max(0.01),
-            heading: (HEADING_DRIFT * setup.drift * self.since_scan).max(0.002),
-        };
-        self.since_scan = 0.0;
-        let alignment = (!self.map.is_empty())
-            .then(|| icp::align(&local.points, &odometry, Some(prior), &self.map, &setup.icp));
-        if let Some(a) = &alignment {
-            self.belief = a.pose;
-        }
-        let belief = self.belief;
-        let place = |p: Point| belief.apply(p);
-        // A scan that could not be aligned would put its walls in the wrong place: it informs
-        // the strategy, not the map.
-        if alignment.as_ref().is_none_or(|a| a.fallback.is_none()) {
-            let walls: Vec<[Point; 2]> = local
-                .walls
-                .iter()
-                .chain(&local.bridges)
-                .map(|w| [place(w[0]), place(w[1])])
-                .collect();
-            self.map.extend_unseen(&walls, MAP_PIECE, MAP_SAME_WALL);
-        }
-        let observation = local.observation.mapped(place);
+        let scan = self.sim.scan();
+        let reading = self
+            .mapper
+            .read(&scan, &odometry, std::mem::take(&mut self.since_scan))
+            .expect("the simulated lidar's scans and poses are valid");
+        // The robot localises: its belief becomes the aligned pose.
+        let belief = reading.estimate;
+        self.sim.set_odometry(belief);
         self.out.truth.scan_times.push(cost.price(&self.tally).total());
         self.tally.scans += 1;
-        let truth = self.truth;
+        let truth = self.sim.truth();
         let exact = self.world.scan(truth.at()).expect("the true pose is in the free space");
         self.out.truth.scans.push(exact);
         self.out.stops.push(Stop {
@@ -358,13 +414,13 @@ impl<'a> Robot<'a> {
             estimate: belief,
             position_error: (belief.x - truth.x).hypot(belief.y - truth.y),
             heading_error: wrap(belief.theta - truth.theta),
-            alignment,
-            cleaning: local.cleaning,
+            alignment: reading.alignment,
+            cleaning: reading.cleaning,
         });
         if belief.at() != *self.out.believed_path.last().expect("starts with the start") {
             self.out.believed_path.push(belief.at());
         }
-        self.out.observations.push(observation.clone());
-        Ok(observation)
+        self.out.observations.push(reading.observation.clone());
+        Ok(reading.observation)
     }
 }

@@ -215,6 +215,21 @@ impl GridStrategy for RecursiveDfs {
                 self.arrive(context)
             }
             GridFeedback::Scanned(obs) => self.scanned(obs, context),
+            GridFeedback::MoveFailed { .. } => match (self.motion, self.target.take()) {
+                // A child that cannot be reached is dropped: counted as pruned, as a child
+                // claimed from elsewhere is, and the robot decides again where it stands.
+                (Motion::Down { .. }, Some(child)) => {
+                    if let Some(s) = self.view.slot(child) {
+                        self.view.child_states[s] =
+                            self.view.child_states[s].max(VertexState::Pruned);
+                    }
+                    self.noted = true;
+                    self.decide(context)
+                }
+                // The way back up is the way the robot came: try it again.
+                (_, Some(to)) => self.go(to),
+                (_, None) => Action::Done,
+            },
         }
     }
 

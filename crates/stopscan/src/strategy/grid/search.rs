@@ -169,6 +169,8 @@ impl<S: GridStrategy + Clone> GridStrategy for LawnMower<S> {
         match self.phase {
             Phase::Search(i) => match feedback {
                 GridFeedback::Start { .. } | GridFeedback::Arrived => Action::Scan,
+                // The sweep's cell cannot be reached: drop it and sweep on.
+                GridFeedback::MoveFailed { .. } => self.next_lawn_cell(i),
                 GridFeedback::Scanned(obs) => {
                     let vote = obs.vote();
                     self.resume_at = i;
@@ -188,6 +190,10 @@ impl<S: GridStrategy + Clone> GridStrategy for LawnMower<S> {
                     self.next_lawn_cell(i)
                 }
             },
+            // The cell the vote pointed to cannot be reached: sweep on.
+            Phase::Entering if matches!(feedback, GridFeedback::MoveFailed { .. }) => {
+                self.next_lawn_cell(self.resume_at)
+            }
             Phase::Entering => {
                 self.phase = Phase::Inner;
                 let entry = self.entry.unwrap_or_default();

@@ -7,6 +7,7 @@ use std::collections::{BTreeSet, VecDeque};
 use serde::{Deserialize, Serialize};
 
 use super::known::{keeps_clear, keeps_clear_leaving, reaches};
+use super::trip::{Next, Trip};
 use super::{PolygonFeedback, PolygonStrategy};
 use crate::algorithm::visibility::BoundaryPiece;
 use crate::kernel::{Point, magnitude};
@@ -203,8 +204,13 @@ pub struct ExploreLite {
     /// The region of the last scan and where it was taken: the first move of a trip may cross
     /// it straight.
     last: Option<LastView>,
-    /// Waypoints still to drive, last first.
-    route: Vec<Point>,
+    /// The trip being driven.
+    #[serde(default)]
+    trip: Trip,
+    /// The centroid of the frontier the trip is for: blacklisted if a move of the trip fails
+    /// (move_base's failure).
+    #[serde(default)]
+    goal: Option<Point>,
 }
 
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
@@ -255,7 +261,8 @@ impl ExploreLite {
             blacklist: Vec::new(),
             scanned: BTreeSet::new(),
             last: None,
-            route: Vec::new(),
+            trip: Trip::default(),
+            goal: None,
         }
     }
 
@@ -355,8 +362,9 @@ impl ExploreLite {
             });
             match trip {
                 Some(waypoints) if !waypoints.is_empty() => {
-                    self.route = waypoints.into_iter().rev().collect();
-                    return self.next_move();
+                    self.trip.set_route(waypoints.into_iter().rev().collect());
+                    self.goal = Some(f.centroid);
+                    return self.trip.next_move();
                 }
                 _ => self.blacklist.push(f.centroid),
             }
@@ -409,14 +417,6 @@ impl ExploreLite {
             reach = (2 * reach).min(MAX_ENTRY_CELLS);
         }
     }
-
-    /// The next action of the planned trip: the next waypoint, or the scan at its end.
-    fn next_move(&mut self) -> Action<Point> {
-        match self.route.pop() {
-            Some(p) => Action::MoveTo { to: p },
-            None => Action::Scan,
-        }
-    }
 }
 
 impl PolygonStrategy for ExploreLite {
@@ -427,10 +427,24 @@ impl PolygonStrategy for ExploreLite {
     fn act(&mut self, feedback: &PolygonFeedback) -> Action<Point> {
         match feedback {
             PolygonFeedback::Start { .. } => Action::Scan,
-            PolygonFeedback::Arrived => self.next_move(),
+            PolygonFeedback::Arrived => match self.trip.arrived() {
+                Next::Act(a) => a,
+                Next::Replan => match self.last.as_ref().map(|l| l.at) {
+                    Some(at) => self.plan(at),
+                    None => Action::Done,
+                },
+            },
             PolygonFeedback::Scanned(obs) => {
                 self.add(obs);
+                self.trip.begin(obs.at);
+                self.goal = None;
                 self.plan(obs.at)
+            }
+            PolygonFeedback::MoveFailed { .. } => {
+                if let Some(g) = self.goal.take() {
+                    self.blacklist.push(g);
+                }
+                self.trip.failed()
             }
         }
     }

@@ -16,6 +16,7 @@ use crate::protocol::polygon::{Footprint, PolygonObservation, RobotSetup, Sensor
 
 use super::PolygonFeedback;
 use super::approach::Approach;
+use super::trip::{Next, Trip};
 
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 pub(super) struct View {
@@ -145,8 +146,12 @@ pub(super) struct Known {
     deferred: Vec<Deferred>,
     /// The window part the next scan is for.
     pending: Option<Target>,
-    /// Waypoints still to drive, last first.
-    route: Vec<Point>,
+    /// The trip being driven.
+    #[serde(default)]
+    pub(super) trip: Trip,
+    /// The view the robot stands at when it plans (the last scan's).
+    #[serde(default)]
+    here: usize,
     /// The union of the views' regions and its holes, for the sensor rule's pocket term:
     /// built on demand, and rebuilt from the views after deserialising.
     #[serde(skip)]
@@ -204,6 +209,10 @@ pub struct Skipped {
     /// sensor rule's `min_pocket` share of the area seen ([`Sensor::min_pocket`]).
     #[serde(default)]
     pub small_pocket: usize,
+    /// Window parts dropped because the robot reported that it could not reach the viewpoint
+    /// planned for them (a move failure).
+    #[serde(default)]
+    pub move_failed: usize,
 }
 
 impl View {
@@ -979,7 +988,7 @@ impl Known {
         waypoints.extend_from_slice(&target.via);
         waypoints.push(target.at);
         waypoints.reverse();
-        self.route = waypoints;
+        self.trip.set_route(waypoints);
         self.pending = Some(target);
         self.next_move()
     }
@@ -1016,7 +1025,7 @@ impl Known {
             i = j;
         }
         out.reverse();
-        self.route = out;
+        self.trip.set_route(out);
         self.pending = Some(target);
         self.next_move()
     }
@@ -1035,10 +1044,17 @@ impl Known {
 
     /// The next action of the planned trip: the next waypoint, or the scan at its end.
     pub(super) fn next_move(&mut self) -> Action<Point> {
-        match self.route.pop() {
-            Some(p) => Action::MoveTo { to: p },
-            None => Action::Scan,
+        self.trip.next_move()
+    }
+
+    /// A move failed: the target the trip was for is dropped (its window part counted in
+    /// [`Skipped::move_failed`]) and the robot drives back to where the trip started.
+    fn move_failed(&mut self) -> Action<Point> {
+        if let Some(t) = self.pending.take() {
+            self.handled(&t);
+            self.skipped.move_failed += 1;
         }
+        self.trip.failed()
     }
 
     /// The chain of views from `v` up to the root.
@@ -1201,24 +1217,39 @@ fn path_length(from: Point, pts: &[Point]) -> f64 {
 }
 
 /// What every polygon strategy does with feedback: scan at the start, drive the planned trip,
-/// and after each scan record it in `known(s)` and ask `plan(s, view)` for the next trip.
+/// and after each scan record it in `known(s)` and ask `plan(s, view)` for the next trip. A
+/// failed move drops the trip's target and drives back to where the trip started, to plan
+/// again from there ([`trip`](super::trip)).
 pub(super) fn act<S>(
     s: &mut S,
     feedback: &PolygonFeedback,
     known: fn(&mut S) -> &mut Known,
     plan: fn(&mut S, usize) -> Action<Point>,
 ) -> Action<Point> {
+    let replan = |s: &mut S, v: usize| {
+        let mut a = plan(s, v);
+        while matches!(a, Action::Done) && known(s).reopen_wide_openings() {
+            a = plan(s, v);
+        }
+        a
+    };
     match feedback {
         PolygonFeedback::Start { .. } => Action::Scan,
-        PolygonFeedback::Arrived => known(s).next_move(),
-        PolygonFeedback::Scanned(obs) => {
-            let v = known(s).add(obs);
-            let mut a = plan(s, v);
-            while matches!(a, Action::Done) && known(s).reopen_wide_openings() {
-                a = plan(s, v);
+        PolygonFeedback::Arrived => match known(s).trip.arrived() {
+            Next::Act(a) => a,
+            Next::Replan => {
+                let v = known(s).here;
+                replan(s, v)
             }
-            a
+        },
+        PolygonFeedback::Scanned(obs) => {
+            let k = known(s);
+            let v = k.add(obs);
+            k.here = v;
+            k.trip.begin(obs.at);
+            replan(s, v)
         }
+        PolygonFeedback::MoveFailed { .. } => known(s).move_failed(),
     }
 }
 

@@ -22,6 +22,7 @@ mod greedy_nbv;
 mod known;
 mod nearest_frontier;
 mod range_limited;
+mod trip;
 
 pub use cost_aware::CostAware;
 pub use depth_first::DepthFirst;
@@ -33,6 +34,7 @@ pub use greedy_nbv::GreedyNbv;
 pub use known::{Placement, Skipped};
 pub use nearest_frontier::NearestFrontier;
 pub use range_limited::RangeLimited;
+pub use trip::MAX_MOVE_FAILURES;
 
 use super::{Entry, Registry, UnknownStrategy};
 use crate::kernel::Point;

@@ -1,0 +1,431 @@
+//! `stopscan serve`: a simulated robot (noisy lidar, drifting odometry, a navigation stack
+//! that refuses goals it cannot reach) drives the server over standard input and output and
+//! over TCP; malformed messages get errors naming the field; `kill -9` at random moments,
+//! with `--resume`, ends with the same journal, byte for byte, as an uninterrupted run.
+
+mod common;
+
+use std::io::{BufRead, BufReader, Write};
+use std::path::Path;
+use std::process::{Child, ChildStdin, ChildStdout, Command, Stdio};
+
+use rand::{RngExt, SeedableRng};
+use rand_chacha::ChaCha8Rng;
+use serde_json::{Value, json};
+use stopscan::kernel::Point;
+use stopscan::protocol::polygon::Footprint;
+use stopscan::sim::lidar::SimRobot;
+use stopscan::world::lidar::Lidar;
+use stopscan::world::polygon::PolygonWorld;
+
+use common::temp;
+
+/// A small generated office (two rows of three rooms) and its start.
+fn office() -> (PolygonWorld, Point) {
+    let inst = stopscan::generate::office(2, 3, 4).unwrap();
+    let world = PolygonWorld::with_robot(
+        inst.domain,
+        None,
+        &Footprint::disc(0.2).unwrap(),
+        Some(inst.start),
+    )
+    .unwrap();
+    (world, inst.start)
+}
+
+/// The robot's side of the protocol: it answers each reply with its next request.
+struct Client<'a> {
+    robot: SimRobot<'a>,
+    seq: u64,
+    strategy: &'a str,
+    /// Where the scans were truly taken.
+    truth: Vec<Point>,
+}
+
+impl<'a> Client<'a> {
+    fn new(world: &'a PolygonWorld, start: Point, strategy: &'a str, seed: u64) -> Self {
+        let lidar = Lidar { beams: 360, ..Lidar::default() };
+        Self {
+            robot: SimRobot::new(world, start, lidar, 0.01, seed),
+            seq: 0,
+            strategy,
+            truth: Vec::new(),
+        }
+    }
+
+    fn start(&self) -> String {
+        json!({
+            "protocol": "stopscan/1", "seq": 0, "type": "start", "strategy": self.strategy,
+            "pose": self.robot.odometry(),
+            "cost": {"scan_time": 30.0, "speed": 0.5},
+            "robot": {"radius": 0.2}, "sensor": {"sigma": 0.02}, "odometry_drift": 0.01,
+        })
+        .to_string()
+    }
+
+    /// The request that answers `reply`, or `None` when the session is over.
+    fn answer(&mut self, reply: &Value) -> Option<String> {
+        assert_eq!(reply["protocol"], "stopscan/1", "{reply}");
+        assert_eq!(reply["seq"], self.seq, "{reply}");
+        self.seq += 1;
+        let seq = self.seq;
+        let request = match reply["type"].as_str().unwrap() {
+            "scan" => {
+                let scan = self.robot.scan();
+                self.truth.push(self.robot.truth().at());
+                json!({"seq": seq, "type": "scan", "pose": self.robot.odometry(), "scan": scan})
+            }
+            "goal" => {
+                let g = &reply["goal"];
+                let drive = self.robot.drive([g["x"].as_f64().unwrap(), g["y"].as_f64().unwrap()]);
+                let pose = self.robot.odometry();
+                match drive.failed {
+                    None => json!({"seq": seq, "type": "arrived", "pose": pose}),
+                    Some(r) => {
+                        json!({"seq": seq, "type": "move_failed", "pose": pose, "reason": r})
+                    }
+                }
+            }
+            "done" => return None,
+            other => panic!("unexpected reply {other}: {reply}"),
+        };
+        Some(request.to_string())
+    }
+}
+
+/// A server process on pipes.
+struct Server {
+    child: Child,
+    input: ChildStdin,
+    output: BufReader<ChildStdout>,
+}
+
+impl Server {
+    fn spawn(args: &[&str]) -> Self {
+        let mut child = Command::new(env!("CARGO_BIN_EXE_stopscan"))
+            .arg("serve")
+            .args(args)
+            .stdin(Stdio::piped())
+            .stdout(Stdio::piped())
+            .stderr(Stdio::null())
+            .spawn()
+            .unwrap();
+        let input = child.stdin.take().unwrap();
+        let output = BufReader::new(child.stdout.take().unwrap());
+        Self { child, input, output }
+    }
+
+    /// Sends a line and reads the reply; `None` if the server died first.
+    fn ask(&mut self, line: &str) -> Option<Value> {
+        if writeln!(self.input, "{line}").is_err() {
+            return None;
+        }
+        let mut reply = String::new();
+        match self.output.read_line(&mut reply) {
+            Ok(n) if n > 0 => Some(serde_json::from_str(&reply).unwrap()),
+            _ => None,
+        }
+    }
+
+    fn kill(mut self) {
+        let _ = self.child.kill();
+        let _ = self.child.wait();
+    }
+
+    fn finish(mut self) {
+        drop(self.input);
+        assert!(self.child.wait().unwrap().success());
+    }
+}
+
+/// Drives a whole session over one server process: the final reply.
+fn run_session(
+    world: &PolygonWorld,
+    start: Point,
+    strategy: &str,
+    journal: &Path,
+) -> (Value, Vec<Point>) {
+    let mut server = Server::spawn(&["--journal", journal.to_str().unwrap()]);
+    let mut client = Client::new(world, start, strategy, 7);
+    let mut line = client.start();
+    loop {
+        let reply = server.ask(&line).expect("the server answers");
+        match client.answer(&reply) {
+            Some(next) => line = next,
+            None => {
+                server.finish();
+                return (reply, client.truth);
+            }
+        }
+    }
+}
+
+/// The share of the free space (grid points every 0.25 m) within sight of some true scan
+/// position, by casting a ray to each point: written from the definition.
+fn seen_share(world: &PolygonWorld, stops: &[Point]) -> f64 {
+    use stopscan::geometry::Location;
+    let d = world.domain();
+    let walls = stopscan::world::lidar::Walls::of(d);
+    let [lo, hi] = stopscan::algorithm::cover::bounds_of(&d.rings()[0]);
+    let (mut inside, mut seen) = (0usize, 0usize);
+    let step = 0.25;
+    let mut y = lo[1] + 0.5 * step;
+    while y < hi[1] {
+        let mut x = lo[0] + 0.5 * step;
+        while x < hi[0] {
+            let p = [x, y];
+            if d.locate(p) == Location::Interior {
+                inside += 1;
+                seen += usize::from(stops.iter().any(|s| {
+                    let dist = (p[0] - s[0]).hypot(p[1] - s[1]);
+                    dist == 0.0
+                        || walls
+                            .cast(*s, [(p[0] - s[0]) / dist, (p[1] - s[1]) / dist], dist)
+                            .is_none()
+                }));
+            }
+            x += step;
+        }
+        y += step;
+    }
+    seen as f64 / inside as f64
+}
+
+#[test]
+fn a_simulated_robot_explores_an_office_over_standard_input() {
+    let (world, start) = office();
+    let dir = temp("serve-stdio");
+    std::fs::create_dir_all(&dir).unwrap();
+    for strategy in ["cost_aware", "explore_lite"] {
+        let journal = dir.join(format!("{strategy}.jsonl"));
+        let (done, truth) = run_session(&world, start, strategy, &journal);
+        assert_eq!(done["type"], "done", "{done}");
+        assert_eq!(done["reason"], "explored", "{done}");
+        let summary = &done["summary"];
+        assert_eq!(summary["strategy"], strategy);
+        assert_eq!(summary["scans"].as_u64().unwrap() as usize, truth.len());
+        // The time is the cost model's price of the tally it reports.
+        let expect =
+            30.0 * summary["scans"].as_f64().unwrap() + summary["distance"].as_f64().unwrap() / 0.5;
+        assert!((summary["time"].as_f64().unwrap() - expect).abs() < 1e-6, "{summary}");
+        let share = seen_share(&world, &truth);
+        assert!(share > 0.97, "{strategy}: {share} of the free space seen");
+        // The journal: a header, then one line per step, each request with its reply.
+        let text = std::fs::read_to_string(&journal).unwrap();
+        let lines: Vec<&str> = text.lines().collect();
+        let header: Value = serde_json::from_str(lines[0]).unwrap();
+        assert_eq!(header["format"], "stopscan-journal/1");
+        assert_eq!(lines.len() as u64 - 1, done["seq"].as_u64().unwrap() + 1);
+        let last: Value = serde_json::from_str(lines[lines.len() - 1]).unwrap();
+        assert_eq!(last["reply"], done);
+    }
+}
+
+#[test]
+fn kill_9_at_random_moments_then_resume_ends_byte_identical() {
+    let (world, start) = office();
+    let dir = temp("serve-crash");
+    std::fs::create_dir_all(&dir).unwrap();
+    let clean = dir.join("clean.jsonl");
+    let (done, _) = run_session(&world, start, "nearest_frontier", &clean);
+    let steps = done["seq"].as_u64().unwrap();
+
+    let journal = dir.join("crashed.jsonl");
+    let j = journal.to_str().unwrap();
+    let mut rng = ChaCha8Rng::seed_from_u64(11);
+    let mut server = Server::spawn(&["--journal", j]);
+    let mut client = Client::new(&world, start, "nearest_frontier", 7);
+    let mut line = client.start();
+    let mut kills = 0;
+    let last = loop {
+        // Now and then, kill the server while it reads, works or writes.
+        if kills < 12 && rng.random_bool(6.0 / steps as f64) {
+            writeln!(server.input, "{line}").unwrap();
+            std::thread::sleep(std::time::Duration::from_micros(rng.random_range(0..3000)));
+            server.kill();
+            kills += 1;
+            server = Server::spawn(&["--resume", j]);
+        }
+        // A robot that gets no reply sends the same request again, to a resumed server.
+        let reply = match server.ask(&line) {
+            Some(r) => r,
+            None => {
+                server.kill();
+                server = Server::spawn(&["--resume", j]);
+                continue;
+            }
+        };
+        match client.answer(&reply) {
+            Some(next) => line = next,
+            None => break reply,
+        }
+    };
+    server.finish();
+    assert!(kills >= 3, "only {kills} kills");
+    assert_eq!(last, done);
+    assert_eq!(std::fs::read(&journal).unwrap(), std::fs::read(&clean).unwrap());
+}
+
+#[test]
+fn the_same_session_over_tcp() {
+    let (world, start) = office();
+    let mut child = Command::new(env!("CARGO_BIN_EXE_stopscan"))
+        .args(["serve", "--listen", "127.0.0.1:0"])
+        .stderr(Stdio::piped())
+        .spawn()
+        .unwrap();
+    let mut err = BufReader::new(child.stderr.take().unwrap());
+    let mut first = String::new();
+    err.read_line(&mut first).unwrap();
+    let addr = first.trim().strip_prefix("listening on ").expect(&first).to_string();
+    let connect = || {
+        let s = std::net::TcpStream::connect(&addr).unwrap();
+        (BufReader::new(s.try_clone().unwrap()), s)
+    };
+    let (mut reader, mut writer) = connect();
+    let mut client = Client::new(&world, start, "depth_first", 3);
+    let mut line = client.start();
+    let mut reconnected = false;
+    loop {
+        writeln!(writer, "{line}").unwrap();
+        let mut reply = String::new();
+        reader.read_line(&mut reply).unwrap();
+        let reply: Value = serde_json::from_str(&reply).unwrap();
+        // Halfway, drop the connection and come back: the session goes on.
+        if !reconnected && reply["seq"] == 20 {
+            drop((reader, writer));
+            (reader, writer) = connect();
+            reconnected = true;
+            // The last request again, on the new connection: the same reply, not a new step.
+            writeln!(writer, "{line}").unwrap();
+            let mut again = String::new();
+            reader.read_line(&mut again).unwrap();
+            assert_eq!(serde_json::from_str::<Value>(&again).unwrap(), reply);
+        }
+        match client.answer(&reply) {
+            Some(next) => line = next,
+            None => {
+                assert_eq!(reply["reason"], "explored", "{reply}");
+                break;
+            }
+        }
+    }
+    drop((reader, writer));
+    assert!(child.wait().unwrap().success(), "the server exits once the session is over");
+    assert!(reconnected);
+}
+
+/// Every malformed message gets an error reply naming the field, and leaves the session as
+/// it was: the well-formed session that follows runs as if they had not been sent.
+#[test]
+fn malformed_messages_get_errors_that_name_the_field() {
+    let mut server = Server::spawn(&[]);
+    let start = json!({"protocol": "stopscan/1", "seq": 0, "type": "start", "pose": {"x": 0.0, "y": 0.0, "theta": 0.0}});
+    let cases: Vec<(String, Option<&str>, &str)> = vec![
+        ("{not json".into(), None, "not valid JSON"),
+        ("[1, 2]".into(), None, "not a JSON object"),
+        (json!({"type": "start"}).to_string(), Some("seq"), "missing"),
+        (json!({"seq": -1, "type": "start"}).to_string(), Some("seq"), "integer"),
+        (json!({"seq": 0}).to_string(), Some("type"), "missing"),
+        (json!({"seq": 0, "type": 7}).to_string(), Some("type"), "string"),
+        (json!({"seq": 0, "type": "warp"}).to_string(), Some("type"), "unknown message type"),
+        (json!({"seq": 0, "type": "start", "pose": {"x": 0, "y": 0, "theta": 0}}).to_string(), Some("protocol"), "missing"),
+        (json!({"protocol": "stopscan/9", "seq": 0, "type": "start"}).to_string(), Some("protocol"), "stopscan/1"),
+        (json!({"protocol": "stopscan/1", "seq": 0, "type": "start"}).to_string(), Some("pose"), "missing field"),
+        (json!({"protocol": "stopscan/1", "seq": 0, "type": "start", "pose": {"x": "a", "y": 0, "theta": 0}}).to_string(), Some("pose.x"), "invalid type"),
+        (json!({"protocol": "stopscan/1", "seq": 0, "type": "start", "pose": {"x": 0, "y": 0, "theta": 0}, "speed": 2}).to_string(), Some("speed"), "unknown field"),
+        (json!({"protocol": "stopscan/1", "seq": 0, "type": "start", "pose": {"x": 0, "y": 0, "theta": 0}, "strategy": "warp"}).to_string(), Some("strategy"), "unknown strategy"),
+        (json!({"protocol": "stopscan/1", "seq": 0, "type": "start", "pose": {"x": 0, "y": 0, "theta": 0}, "cost": {"scan_time": -1, "speed": 1}}).to_string(), Some("cost"), "scan_time"),
+        (json!({"protocol": "stopscan/1", "seq": 0, "type": "start", "pose": {"x": 0, "y": 0, "theta": 0}, "robot": {"radius": -0.2}}).to_string(), Some("robot.radius"), "radius"),
+        (json!({"protocol": "stopscan/1", "seq": 0, "type": "start", "pose": {"x": 0, "y": 0, "theta": 0}, "family": "corner"}).to_string(), Some("corner"), "distance"),
+        (json!({"seq": 0, "type": "arrived", "pose": {"x": 0, "y": 0, "theta": 0}}).to_string(), Some("type"), "expected \"start\""),
+        (json!({"seq": 3, "type": "arrived", "pose": {"x": 0, "y": 0, "theta": 0}}).to_string(), Some("seq"), "expected 0"),
+    ];
+    for (line, field, needle) in &cases {
+        let reply = server.ask(line).expect("the server answers");
+        assert_eq!(reply["type"], "error", "{line}: {reply}");
+        assert_eq!(reply["field"].as_str(), *field, "{line}: {reply}");
+        assert!(reply["message"].as_str().unwrap().contains(needle), "{line}: {reply}");
+    }
+    // Now the start, then out-of-order and malformed scans.
+    let reply = server.ask(&start.to_string()).unwrap();
+    assert_eq!(reply["type"], "scan", "{reply}");
+    let scan = |ranges: Value, extra: Value| {
+        let mut m = json!({"seq": 1, "type": "scan", "pose": {"x": 0.0, "y": 0.0, "theta": 0.0},
+            "scan": {"angle_min": -3.14, "angle_increment": 0.0175, "range_min": 0.05, "range_max": 20.0, "ranges": ranges}});
+        for (k, v) in extra.as_object().unwrap() {
+            m["scan"][k] = v.clone();
+        }
+        m.to_string()
+    };
+    let cases: Vec<(String, &str, &str)> = vec![
+        (json!({"seq": 1, "type": "arrived", "pose": {"x": 0, "y": 0, "theta": 0}}).to_string(), "type", "expected \"scan\""),
+        (json!({"seq": 1, "type": "scan", "pose": {"x": 0, "y": 0, "theta": 0}}).to_string(), "scan", "missing"),
+        (scan(json!([1.0, "x", 2.0]), json!({})), "scan.ranges", "range 1 is"),
+        (scan(json!([1.0, 1.0, 1.0]), json!({"angle_increment": 0.0})), "scan.angle_increment", "zero"),
+        (scan(json!([1.0, 1.0, 1.0]), json!({"range_max": 0.01})), "scan.range_max", ""),
+        (scan(json!(vec![Value::Null; 360]), json!({})), "scan", "valid"),
+        (json!({"seq": 0, "type": "start", "protocol": "stopscan/1", "pose": {"x": 1, "y": 0, "theta": 0}}).to_string(), "seq", "different request"),
+    ];
+    for (line, field, needle) in &cases {
+        let reply = server.ask(line).expect("the server answers");
+        assert_eq!(reply["type"], "error", "{line}: {reply}");
+        assert_eq!(reply["field"].as_str(), Some(*field), "{line}: {reply}");
+        assert!(reply["message"].as_str().unwrap().contains(needle), "{line}: {reply}");
+    }
+    // The start sent again is answered again, the same way.
+    assert_eq!(server.ask(&start.to_string()).unwrap(), reply);
+    // A clear scan of an empty disc: explored at once.
+    let ok = server
+        .ask(&scan(
+            json!(vec![5.0; 360]),
+            json!({"angle_increment": std::f64::consts::TAU / 360.0}),
+        ))
+        .unwrap();
+    assert_eq!(ok["type"], "done", "{ok}");
+    assert_eq!(ok["localised"]["pose"]["x"], 0.0);
+    let after = server
+        .ask(
+            &json!({"seq": 2, "type": "arrived", "pose": {"x": 0, "y": 0, "theta": 0}}).to_string(),
+        )
+        .unwrap();
+    assert!(after["message"].as_str().unwrap().contains("the session is over"), "{after}");
+    server.finish();
+}
+
+#[test]
+fn a_corner_search_ends_when_the_robot_finds_the_target() {
+    let mut server = Server::spawn(&[]);
+    let start = json!({"protocol": "stopscan/1", "seq": 0, "type": "start", "family": "corner",
+        "strategy": "unirec", "pose": {"x": 1.0, "y": 2.0, "theta": 0.5},
+        "cost": {"scan_time": 2.0, "speed": 0.5}, "corner": {"distance": 10.0}});
+    let goal = server.ask(&start.to_string()).unwrap();
+    assert_eq!(goal["type"], "goal", "{goal}");
+    // UNIREC's first stop is at δ = τv/D = 0.1 rad on the circle through the robot and the
+    // corner, in the corner frame (robot at the origin facing the corner at (D, 0)).
+    let stop = &goal["stop"];
+    assert!((stop["angle"].as_f64().unwrap() - 0.1).abs() < 1e-12, "{goal}");
+    let (s, c) = 0.1f64.sin_cos();
+    let map = &goal["map_goal"];
+    assert!((map["x"].as_f64().unwrap() - 10.0 * s * s).abs() < 1e-9);
+    assert!((map["y"].as_f64().unwrap() - 10.0 * s * c).abs() < 1e-9);
+    // In the robot's frame: the start pose applied to the corner frame's point.
+    let g = &goal["goal"];
+    let (x, y) = (10.0 * s * s, 10.0 * s * c);
+    let (sn, cs) = 0.5f64.sin_cos();
+    assert!((g["x"].as_f64().unwrap() - (1.0 + cs * x - sn * y)).abs() < 1e-9, "{goal}");
+    assert!((g["y"].as_f64().unwrap() - (2.0 + sn * x + cs * y)).abs() < 1e-9, "{goal}");
+    let pose = g.clone();
+    let scan = server.ask(&json!({"seq": 1, "type": "arrived", "pose": pose}).to_string()).unwrap();
+    assert_eq!(scan["type"], "scan");
+    let next = server
+        .ask(&json!({"seq": 2, "type": "scan", "pose": pose, "edge": null}).to_string())
+        .unwrap();
+    assert_eq!(next["type"], "goal");
+    let done = server.ask(&json!({"seq": 3, "type": "found", "pose": pose}).to_string()).unwrap();
+    assert_eq!(done["type"], "done");
+    assert_eq!(done["reason"], "found");
+    assert_eq!(done["summary"]["scans"], 1);
+    assert_eq!(done["summary"]["strategy"], "unirec");
+    server.finish();
+}

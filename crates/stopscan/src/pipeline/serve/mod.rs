@@ -1,0 +1,297 @@
+//! `stopscan serve`: a robot drives a strategy over line-delimited JSON (protocol
+//! `stopscan/1`, documented in `docs/protocol.md` with a JSON Schema beside it).
+//!
+//! The robot sends its start, its scans with the poses odometry gave, its arrivals and its
+//! failed moves; stopscan answers each with the next goal, a scan request, done, or an
+//! error naming the field at fault. Every request carries a sequence number `seq`, counted
+//! from 0 by the robot; the reply echoes it.
+//!
+//! **Resumable.** With a journal, every answered step is appended to it (the request and the
+//! reply, one JSON line) and written to the operating system before the reply is sent. After
+//! a crash, [`Server::resume`] replays the journal through a fresh session (checking that
+//! every reply comes out the same) and goes on. A robot that got no reply sends the same
+//! request again with the same `seq`: a step the journal holds is answered from it, never
+//! taken twice; a step it does not hold is taken now. So nothing is lost or repeated, and a
+//! run interrupted by `kill -9` any number of times ends with the same journal, byte for
+//! byte, as one that never was.
+//!
+//! The transport (standard input and output, or TCP) is the caller's: a [`Server`] turns one
+//! request line into one reply line.
+
+pub mod message;
+mod session;
+
+use std::fs::{File, OpenOptions};
+use std::hash::{DefaultHasher, Hash, Hasher};
+use std::io::{BufRead, BufReader, Seek, SeekFrom, Write};
+use std::path::{Path, PathBuf};
+
+pub use message::{DoneReason, PROTOCOL, ProtocolError, Reply, ReplyBody, Request, parse};
+pub use session::{
+    DEFAULT_BELIEF, DEFAULT_CORNER_STRATEGY, DEFAULT_DRIFT, DEFAULT_POLYGON_STRATEGY,
+    DEFAULT_SIGMA, Session,
+};
+
+/// The journal's first line names the format.
+pub const JOURNAL_FORMAT: &str = "stopscan-journal/1";
+
+/// How a server runs.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct ServeOptions {
+    /// The most scans a session may take; then it is done ([`DoneReason::Limit`]).
+    pub max_scans: u64,
+    /// Whether each journal line is also synced to the disk (`fsync`) before the reply: safe
+    /// against a power cut, not only a crash, at about a millisecond per step.
+    pub fsync: bool,
+}
+
+impl Default for ServeOptions {
+    fn default() -> Self {
+        Self { max_scans: crate::sim::lidar::MAX_SCANS, fsync: false }
+    }
+}
+
+/// Why a server could not go on.
+#[derive(Debug, thiserror::Error)]
+#[non_exhaustive]
+pub enum ServeError {
+    /// The journal could not be created, read or written.
+    #[error("journal {path}: {source}")]
+    Io {
+        /// The journal.
+        path: PathBuf,
+        /// Why.
+        source: std::io::Error,
+    },
+    /// The journal exists already (a new session must not overwrite one).
+    #[error("journal {0} exists already; resume it with --resume, or choose another file")]
+    Exists(PathBuf),
+    /// The journal is not one this server wrote, or does not replay to the same replies.
+    #[error("journal {path}, line {line}: {problem}")]
+    Journal {
+        /// The journal.
+        path: PathBuf,
+        /// The line, from 1.
+        line: usize,
+        /// What is wrong.
+        problem: String,
+    },
+}
+
+/// One answered step, as the journal holds it.
+#[derive(Debug, Clone, PartialEq, serde::Serialize, serde::Deserialize)]
+struct Entry {
+    seq: u64,
+    request: serde_json::Value,
+    reply: serde_json::Value,
+}
+
+/// The journal file, open for appending.
+#[derive(Debug)]
+struct Journal {
+    path: PathBuf,
+    file: File,
+    fsync: bool,
+}
+
+impl Journal {
+    fn io(&self, source: std::io::Error) -> ServeError {
+        ServeError::Io { path: self.path.clone(), source }
+    }
+
+    fn append(&mut self, line: &str) -> Result<(), ServeError> {
+        let mut bytes = Vec::with_capacity(line.len() + 1);
+        bytes.extend_from_slice(line.as_bytes());
+        bytes.push(b'\n');
+        // One write: a crash leaves the line whole or torn at its end, never interleaved.
+        self.file.write_all(&bytes).map_err(|e| self.io(e))?;
+        if self.fsync {
+            self.file.sync_data().map_err(|e| self.io(e))?;
+        }
+        Ok(())
+    }
+}
+
+/// A session with its journal: one request line in, one reply line out.
+#[derive(Debug)]
+pub struct Server {
+    session: Session,
+    journal: Option<Journal>,
+    /// Each answered step's request (hashed) and reply line, by `seq`.
+    answered: Vec<(u64, String)>,
+}
+
+fn digest(canonical: &str) -> u64 {
+    let mut h = DefaultHasher::new();
+    canonical.hash(&mut h);
+    h.finish()
+}
+
+impl Server {
+    /// A server with no journal.
+    pub fn new(options: ServeOptions) -> Self {
+        Self { session: Session::new(options.max_scans), journal: None, answered: Vec::new() }
+    }
+
+    /// A server that journals to `path`, a new file.
+    ///
+    /// # Errors
+    /// [`ServeError::Exists`] if the file exists and is not empty; [`ServeError::Io`] if it
+    /// cannot be created.
+    pub fn with_journal(path: &Path, options: ServeOptions) -> Result<Self, ServeError> {
+        let io = |source| ServeError::Io { path: path.to_path_buf(), source };
+        if std::fs::metadata(path).is_ok_and(|m| m.len() > 0) {
+            return Err(ServeError::Exists(path.to_path_buf()));
+        }
+        let file = OpenOptions::new().create(true).append(true).open(path).map_err(io)?;
+        let mut journal = Journal { path: path.to_path_buf(), file, fsync: options.fsync };
+        let header = serde_json::json!({
+            "format": JOURNAL_FORMAT,
+            "protocol": PROTOCOL,
+            "stopscan_version": env!("CARGO_PKG_VERSION"),
+        });
+        journal.append(&header.to_string())?;
+        Ok(Self { journal: Some(journal), ..Self::new(options) })
+    }
+
+    /// A server that goes on from the journal at `path`: its steps are replayed through a
+    /// fresh session, each reply checked against the one recorded. A last line torn by a
+    /// crash (no newline at its end) is cut off: its reply was never sent.
+    ///
+    /// # Errors
+    /// [`ServeError::Io`] if the journal cannot be read or written; [`ServeError::Journal`]
+    /// naming the line that is not a step of this protocol or whose reply differs.
+    pub fn resume(path: &Path, options: ServeOptions) -> Result<Self, ServeError> {
+        let io = |source| ServeError::Io { path: path.to_path_buf(), source };
+        let bad = |line: usize, problem: String| ServeError::Journal {
+            path: path.to_path_buf(),
+            line,
+            problem,
+        };
+        let mut file = OpenOptions::new().read(true).append(true).open(path).map_err(io)?;
+        let mut reader = BufReader::new(&mut file);
+        let mut server = Self::new(options);
+        let mut whole = 0u64;
+        let mut buf = String::new();
+        for number in 1.. {
+            buf.clear();
+            let n = reader.read_line(&mut buf).map_err(io)?;
+            if n == 0 || !buf.ends_with('\n') {
+                break;
+            }
+            whole += n as u64;
+            let line = buf.trim_end_matches('\n');
+            if number == 1 {
+                let header: serde_json::Value = serde_json::from_str(line)
+                    .map_err(|e| bad(1, format!("not a journal header: {e}")))?;
+                if header["format"] != JOURNAL_FORMAT {
+                    return Err(bad(1, format!("not a {JOURNAL_FORMAT} journal")));
+                }
+                continue;
+            }
+            let entry: Entry = serde_json::from_str(line)
+                .map_err(|e| bad(number, format!("not a journal step: {e}")))?;
+            let (replayed, step) = server.step_line(&entry.request.to_string());
+            if step.is_none() {
+                return Err(bad(
+                    number,
+                    format!("step {} is not a step any more: {replayed}", entry.seq),
+                ));
+            }
+            let same = serde_json::from_str::<serde_json::Value>(&replayed)
+                .is_ok_and(|v| v == entry.reply);
+            if !same {
+                let recorded = entry.reply.to_string();
+                return Err(bad(
+                    number,
+                    format!(
+                        "replaying step {} gives a different reply (a journal from another \
+                         stopscan version?): recorded {recorded}, now {replayed}",
+                        entry.seq
+                    ),
+                ));
+            }
+        }
+        if whole == 0 {
+            return Err(bad(1, "empty: no journal header".into()));
+        }
+        drop(reader);
+        // Cut a torn last line.
+        file.set_len(whole).map_err(io)?;
+        file.seek(SeekFrom::End(0)).map_err(io)?;
+        server.journal = Some(Journal { path: path.to_path_buf(), file, fsync: options.fsync });
+        Ok(server)
+    }
+
+    /// Whether the session is over.
+    pub fn is_done(&self) -> bool {
+        self.session.over().is_some()
+    }
+
+    /// Steps answered so far (the next `seq`).
+    pub fn steps(&self) -> u64 {
+        self.answered.len() as u64
+    }
+
+    /// The reply to one request line (without its newline); a step it takes is journaled
+    /// before this returns.
+    ///
+    /// # Errors
+    /// [`ServeError::Io`] if the journal cannot be written: the step is then not answered,
+    /// and the server should stop (the robot sends the request again to a resumed one).
+    pub fn handle(&mut self, line: &str) -> Result<String, ServeError> {
+        let (reply, entry) = self.step_line(line);
+        if let (Some(entry), Some(journal)) = (entry, &mut self.journal) {
+            journal.append(&entry)?;
+        }
+        Ok(reply)
+    }
+
+    /// The reply to one request line, and the journal line of the step it took, if it took
+    /// one.
+    fn step_line(&mut self, line: &str) -> (String, Option<String>) {
+        let parsed = match parse(line) {
+            Ok(p) => p,
+            Err((seq, e)) => return (Reply::error(seq, e).to_line(), None),
+        };
+        let next = self.answered.len() as u64;
+        let hash = digest(&parsed.canonical);
+        if parsed.seq < next {
+            let (h, reply) = &self.answered[parsed.seq as usize];
+            if *h == hash {
+                return (reply.clone(), None);
+            }
+            let e = ProtocolError::field(
+                "seq",
+                format!(
+                    "step {} was answered already, for a different request; the next step is {next}",
+                    parsed.seq
+                ),
+            );
+            return (Reply::error(Some(parsed.seq), e).to_line(), None);
+        }
+        if parsed.seq > next {
+            let e = ProtocolError::field(
+                "seq",
+                format!(
+                    "expected {next} (steps are numbered from 0 without gaps), got {}",
+                    parsed.seq
+                ),
+            );
+            return (Reply::error(Some(parsed.seq), e).to_line(), None);
+        }
+        match self.session.step(&parsed.request) {
+            Err(e) => (Reply::error(Some(parsed.seq), e).to_line(), None),
+            Ok((body, localised)) => {
+                let reply = Reply { protocol: PROTOCOL, seq: Some(parsed.seq), body, localised };
+                let reply = reply.to_line();
+                let entry = format!(
+                    "{{\"seq\":{},\"request\":{},\"reply\":{}}}",
+                    parsed.seq, parsed.canonical, reply
+                );
+                self.answered.push((hash, reply.clone()));
+                (reply, Some(entry))
+            }
+        }
+    }
+}

@@ -1,0 +1,570 @@
+//! One robot's session: the strategy, what has been mapped, and what the robot was last asked
+//! to do. Every request either moves the session one step (and gets its reply) or is refused
+//! with an error that leaves it unchanged.
+
+use super::message::{
+    CornerIn, DoneReason, FailedIn, Family, Localised, ProtocolError, ReplyBody, Request, ScanIn,
+    StartIn, Summary,
+};
+use crate::kernel::{Num, Point};
+use crate::pipeline::explore::{DEFAULT_POCKET_CAP, default_min_pocket, planning_margin};
+use crate::protocol::corner::{AngleDistribution, CornerObservation, CornerSetup, Stop};
+use crate::protocol::laser::Pose;
+use crate::protocol::polygon::{Footprint, RobotSetup, Sensor};
+use crate::protocol::{Action, CostModel, Feedback, RunTotals, Tally};
+use crate::sensing::mapper::{Mapper, MapperParams};
+use crate::sim::lidar::HEADING_DRIFT;
+use crate::strategy::corner::registry::{self, BuildOptions};
+use crate::strategy::corner::{CornerFeedback, CornerStrategy, StopListStrategy};
+use crate::strategy::polygon::{self, PolygonStrategy};
+
+/// The polygon family's default strategy (as `explore`'s).
+pub const DEFAULT_POLYGON_STRATEGY: &str = "depth_first";
+/// The corner family's default strategy.
+pub const DEFAULT_CORNER_STRATEGY: &str = "exprec";
+/// The range noise assumed when the start does not give it, metres.
+pub const DEFAULT_SIGMA: f64 = 0.02;
+/// Odometry's drift assumed when the start does not give it, per metre driven.
+pub const DEFAULT_DRIFT: f64 = 0.01;
+/// The corner belief assumed when the start does not give it.
+pub const DEFAULT_BELIEF: &str = "uniform:0,180";
+
+/// What the session waits for.
+#[derive(Debug, Clone, Copy, PartialEq)]
+enum Expect {
+    /// `start`.
+    Start,
+    /// `scan` (after a scan request).
+    Scan,
+    /// `arrived` or `move_failed` (after a goal).
+    Move,
+    /// Nothing: the session is over.
+    Over(DoneReason),
+}
+
+/// A session.
+pub struct Session {
+    expect: Expect,
+    max_scans: u64,
+    run: Option<Run>,
+}
+
+enum Run {
+    Polygon(Box<PolygonRun>),
+    Corner(Box<CornerRun>),
+}
+
+impl std::fmt::Debug for Session {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.debug_struct("Session").field("expect", &self.expect).finish_non_exhaustive()
+    }
+}
+
+/// The odometry bookkeeping every family shares: the pose last reported and the tally.
+#[derive(Debug, Clone, Copy)]
+struct Odometry {
+    last: Pose,
+    tally: Tally,
+    /// Metres driven since the last scan.
+    since_scan: f64,
+}
+
+impl Odometry {
+    fn new(start: Pose) -> Self {
+        Self { last: start, tally: Tally::default(), since_scan: 0.0 }
+    }
+
+    /// The robot reports `pose` after a move: the metres since the last report join the
+    /// tally (a move that went nowhere is not counted).
+    fn moved(&mut self, pose: Pose) {
+        let d = (pose.x - self.last.x).hypot(pose.y - self.last.y);
+        if d > 0.0 {
+            self.tally.moves += 1;
+            self.tally.distance += d;
+            self.since_scan += d;
+        }
+        self.last = pose;
+    }
+}
+
+struct PolygonRun {
+    strategy: Box<dyn PolygonStrategy + Send>,
+    cost: CostModel,
+    mapper: Mapper,
+    odometry: Odometry,
+    /// The map frame from the odometry frame.
+    correction: Pose,
+    /// Where the scans were placed, map frame.
+    scans: Vec<Point>,
+    /// The last feedback was a failed move.
+    failing: bool,
+}
+
+struct CornerRun {
+    strategy: StopListStrategy,
+    setup: CornerSetup,
+    /// The corner frame (the robot's start, facing the corner) in the odometry frame.
+    frame: Pose,
+    odometry: Odometry,
+    /// The stop the robot stands at, radians.
+    angle: f64,
+    /// The stop it was sent to.
+    target: Option<Stop>,
+}
+
+impl Session {
+    /// A session that waits for `start` and ends after `max_scans` scans.
+    pub fn new(max_scans: u64) -> Self {
+        Self { expect: Expect::Start, max_scans, run: None }
+    }
+
+    /// Whether the session is over, and why.
+    pub fn over(&self) -> Option<DoneReason> {
+        match self.expect {
+            Expect::Over(r) => Some(r),
+            _ => None,
+        }
+    }
+
+    /// One step: the reply to `request`, and localisation for a polygon scan.
+    ///
+    /// # Errors
+    /// [`ProtocolError`] for a request out of order or with invalid contents; the session is
+    /// unchanged.
+    pub fn step(
+        &mut self,
+        request: &Request,
+    ) -> Result<(ReplyBody, Option<Localised>), ProtocolError> {
+        let out_of_order = |expected: &str| {
+            Err(ProtocolError::field(
+                "type",
+                format!("expected {expected}, got {:?}", request.kind()),
+            ))
+        };
+        match (self.expect, request) {
+            (Expect::Over(reason), _) => Err(ProtocolError::field(
+                "type",
+                format!(
+                    "the session is over ({}); start a new server for a new session",
+                    serde_json::to_value(reason).expect("a name")
+                ),
+            )),
+            (Expect::Start, Request::Start(s)) => {
+                let (run, action) = Run::start(s)?;
+                self.run = Some(run);
+                Ok((self.answer(action, false), None))
+            }
+            (Expect::Start, _) => out_of_order("\"start\""),
+            (_, Request::Start(_)) => Err(ProtocolError::field(
+                "type",
+                "the session has started already; one server runs one session",
+            )),
+            (_, Request::Found(p) | Request::Stop(p)) => {
+                check_pose("pose", &p.pose)?;
+                let run = self.run.as_mut().expect("started");
+                run.odometry().moved(p.pose);
+                let reason = if matches!(request, Request::Found(_)) {
+                    DoneReason::Found
+                } else {
+                    DoneReason::Stopped
+                };
+                Ok((self.finish(reason), None))
+            }
+            (Expect::Move, Request::Arrived(p)) => {
+                check_pose("pose", &p.pose)?;
+                let action = self.run.as_mut().expect("started").arrived(p.pose);
+                Ok((self.answer(action, false), None))
+            }
+            (Expect::Move, Request::MoveFailed(f)) => {
+                check_pose("pose", &f.pose)?;
+                let run = self.run.as_mut().expect("started");
+                match run.failed(f) {
+                    Some(action) => Ok((self.answer(action, true), None)),
+                    None => Ok((self.finish(DoneReason::Blocked), None)),
+                }
+            }
+            (Expect::Move, _) => out_of_order("\"arrived\" or \"move_failed\" (a goal is out)"),
+            (Expect::Scan, Request::Scan(s)) => {
+                check_pose("pose", &s.pose)?;
+                let run = self.run.as_mut().expect("started");
+                let (action, localised) = run.scanned(s)?;
+                if matches!(action, Action::Scan) {
+                    return Ok((self.finish(DoneReason::NoProgress), localised));
+                }
+                Ok((self.answer(action, false), localised))
+            }
+            (Expect::Scan, _) => out_of_order("\"scan\" (a scan was asked for)"),
+        }
+    }
+
+    /// The reply to the strategy's action; `failing` when it answers a failed move.
+    fn answer(&mut self, action: Action<Point>, failing: bool) -> ReplyBody {
+        let run = self.run.as_mut().expect("started");
+        match action {
+            Action::Scan if run.scans() >= self.max_scans => self.finish(DoneReason::Limit),
+            Action::Scan => {
+                self.expect = Expect::Scan;
+                ReplyBody::Scan
+            }
+            Action::MoveTo { to } => {
+                self.expect = Expect::Move;
+                let (goal, map_goal, stop) = run.goal(to);
+                ReplyBody::Goal { goal, map_goal, stop }
+            }
+            Action::Done if failing => self.finish(DoneReason::Stuck),
+            Action::Done => self.finish(DoneReason::Explored),
+        }
+    }
+
+    fn finish(&mut self, reason: DoneReason) -> ReplyBody {
+        self.expect = Expect::Over(reason);
+        let summary = self.run.as_ref().expect("started").summary();
+        ReplyBody::Done { reason, summary }
+    }
+}
+
+/// A pose must be finite.
+fn check_pose(field: &str, p: &Pose) -> Result<(), ProtocolError> {
+    if p.is_finite() {
+        Ok(())
+    } else {
+        Err(ProtocolError::field(field, format!("every coordinate must be finite, got {p:?}")))
+    }
+}
+
+/// A number must be finite and at least 0.
+fn non_negative(field: &str, v: f64) -> Result<f64, ProtocolError> {
+    if v.is_finite() && v >= 0.0 {
+        Ok(v)
+    } else {
+        Err(ProtocolError::field(field, format!("must be a finite number >= 0, got {}", Num(v))))
+    }
+}
+
+impl Run {
+    fn start(s: &StartIn) -> Result<(Self, Action<Point>), ProtocolError> {
+        check_pose("pose", &s.pose)?;
+        let cost = match s.cost {
+            None => CostModel::default(),
+            Some(c) => CostModel::new(c.scan_time, c.move_time, c.speed)
+                .map_err(|e| ProtocolError::field("cost", e.to_string()))?,
+        };
+        match s.family {
+            Family::Polygon => {
+                for (field, present) in [("corner", s.corner.is_some())] {
+                    if present {
+                        return Err(ProtocolError::field(field, "is for the corner family"));
+                    }
+                }
+                let mut run = PolygonRun::new(s, cost)?;
+                let action = run.strategy.act(&Feedback::Start { at: run.map_pose(s.pose).at() });
+                Ok((Self::Polygon(Box::new(run)), action))
+            }
+            Family::Corner => {
+                for (field, present) in [
+                    ("robot", s.robot.is_some()),
+                    ("sensor", s.sensor.is_some()),
+                    ("odometry_drift", s.odometry_drift.is_some()),
+                ] {
+                    if present {
+                        return Err(ProtocolError::field(field, "is for the polygon family"));
+                    }
+                }
+                let Some(corner) = &s.corner else {
+                    return Err(ProtocolError::field(
+                        "corner",
+                        "missing: the corner family needs {\"distance\": D}",
+                    ));
+                };
+                let mut run = CornerRun::new(s, corner, cost)?;
+                let action = run.act(CornerFeedback::Start);
+                Ok((Self::Corner(Box::new(run)), action))
+            }
+        }
+    }
+
+    fn odometry(&mut self) -> &mut Odometry {
+        match self {
+            Self::Polygon(r) => &mut r.odometry,
+            Self::Corner(r) => &mut r.odometry,
+        }
+    }
+
+    fn scans(&self) -> u64 {
+        match self {
+            Self::Polygon(r) => r.odometry.tally.scans,
+            Self::Corner(r) => r.odometry.tally.scans,
+        }
+    }
+
+    fn arrived(&mut self, pose: Pose) -> Action<Point> {
+        match self {
+            Self::Polygon(r) => {
+                r.odometry.moved(pose);
+                r.failing = false;
+                r.strategy.act(&Feedback::Arrived)
+            }
+            Self::Corner(r) => {
+                r.odometry.moved(pose);
+                if let Some(t) = r.target.take() {
+                    r.angle = t.angle.min(crate::protocol::corner::CORNER);
+                }
+                r.act(CornerFeedback::Arrived)
+            }
+        }
+    }
+
+    /// A failed move: the strategy's next action, or `None` when the family has no other
+    /// way to go (the corner search's circle).
+    fn failed(&mut self, f: &FailedIn) -> Option<Action<Point>> {
+        match self {
+            Self::Polygon(r) => {
+                r.odometry.moved(f.pose);
+                r.failing = true;
+                let at = r.map_pose(f.pose).at();
+                Some(r.strategy.act(&Feedback::MoveFailed { at, reason: f.reason }))
+            }
+            Self::Corner(r) => {
+                r.odometry.moved(f.pose);
+                None
+            }
+        }
+    }
+
+    fn scanned(&mut self, s: &ScanIn) -> Result<(Action<Point>, Option<Localised>), ProtocolError> {
+        match self {
+            Self::Polygon(r) => r.scanned(s),
+            Self::Corner(r) => r.scanned(s).map(|a| (a, None)),
+        }
+    }
+
+    /// The goal for a strategy's place: in the odometry frame, in the map frame, and the
+    /// corner stop.
+    fn goal(&self, to: Point) -> (Pose, Pose, Option<Stop>) {
+        match self {
+            Self::Polygon(r) => {
+                let here = r.map_pose(r.odometry.last);
+                let (dx, dy) = (to[0] - here.x, to[1] - here.y);
+                let heading = if dx == 0.0 && dy == 0.0 { here.theta } else { dy.atan2(dx) };
+                let map_goal = Pose::new(to, heading);
+                (r.correction.inverse().compose(&map_goal), map_goal, None)
+            }
+            Self::Corner(r) => {
+                let stop = r.target.expect("a corner goal has its stop");
+                let here = r.setup.position(r.angle);
+                let (dx, dy) = (to[0] - here[0], to[1] - here[1]);
+                let heading = if dx == 0.0 && dy == 0.0 { 0.0 } else { dy.atan2(dx) };
+                let map_goal = Pose::new(to, heading);
+                (r.frame.compose(&map_goal), map_goal, Some(stop))
+            }
+        }
+    }
+
+    fn summary(&self) -> Summary {
+        let (strategy, tally, cost, windows) = match self {
+            Self::Polygon(r) => (
+                r.strategy.name().to_string(),
+                r.odometry.tally,
+                r.cost,
+                Some(r.strategy.skipped()),
+            ),
+            Self::Corner(r) => {
+                (r.strategy.name().to_string(), r.odometry.tally, r.setup.cost, None)
+            }
+        };
+        let terms = cost.price(&tally);
+        Summary { strategy, totals: RunTotals::new(&tally, terms.total(), &terms), windows }
+    }
+}
+
+impl PolygonRun {
+    fn new(s: &StartIn, cost: CostModel) -> Result<Self, ProtocolError> {
+        let name = s.strategy.as_deref().unwrap_or(DEFAULT_POLYGON_STRATEGY);
+        let robot = s.robot.clone().unwrap_or_default();
+        let footprint = match (robot.radius, robot.footprint) {
+            (Some(_), Some(_)) => {
+                return Err(ProtocolError::field("robot", "give radius or footprint, not both"));
+            }
+            (Some(r), None) => Footprint::disc(r)
+                .map_err(|e| ProtocolError::field("robot.radius", e.to_string()))?,
+            (None, Some(v)) => Footprint::convex(v)
+                .map_err(|e| ProtocolError::field("robot.footprint", e.to_string()))?,
+            (None, None) => Footprint::Point,
+        };
+        let sensor = s.sensor.unwrap_or_default();
+        let sigma = non_negative("sensor.sigma", sensor.sigma.unwrap_or(DEFAULT_SIGMA))?;
+        let drift = non_negative("odometry_drift", s.odometry_drift.unwrap_or(DEFAULT_DRIFT))?;
+        if drift > 0.5 {
+            return Err(ProtocolError::field(
+                "odometry_drift",
+                format!("must be a share of the distance driven in [0, 0.5], got {}", Num(drift)),
+            ));
+        }
+        let range = sensor.range.map(|r| non_negative("sensor.range", r)).transpose()?;
+        if range == Some(0.0) {
+            return Err(ProtocolError::field("sensor.range", "must be above 0"));
+        }
+        if sensor.beams == Some(0) {
+            return Err(ProtocolError::field("sensor.beams", "must be at least 1"));
+        }
+        let min_window = match sensor.min_window {
+            Some(w) => non_negative("sensor.min_window", w)?,
+            None => footprint.width(),
+        };
+        let margin = planning_margin(sigma);
+        let setup = RobotSetup {
+            cost,
+            footprint: Footprint::disc(footprint.clearance() + margin)
+                .expect("a finite clearance and margin"),
+            sensor: Sensor {
+                range,
+                beams: sensor.beams,
+                min_feature: non_negative("sensor.min_feature", sensor.min_feature.unwrap_or(0.0))?,
+                min_window,
+                min_pocket: default_min_pocket(&footprint, None),
+                pocket_cap: DEFAULT_POCKET_CAP,
+                wall_tolerance: margin,
+            },
+        };
+        let strategy = polygon::build_for(name, &setup)
+            .map_err(|e| ProtocolError::field("strategy", e.to_string()))?;
+        if name == "range_limited" && range.is_none() {
+            return Err(ProtocolError::field(
+                "sensor.range",
+                "missing: range_limited needs the sensor's range",
+            ));
+        }
+        let mut params = MapperParams::for_sensor(sigma, drift, HEADING_DRIFT * drift);
+        params.ingest.bridge = min_window.max(params.ingest.bridge);
+        Ok(Self {
+            strategy,
+            cost,
+            mapper: Mapper::new(params),
+            odometry: Odometry::new(s.pose),
+            correction: Pose::default(),
+            scans: Vec::new(),
+            failing: false,
+        })
+    }
+
+    /// A pose in the odometry frame, in the map frame.
+    fn map_pose(&self, odometry: Pose) -> Pose {
+        self.correction.compose(&odometry)
+    }
+
+    fn scanned(&mut self, s: &ScanIn) -> Result<(Action<Point>, Option<Localised>), ProtocolError> {
+        if s.edge.is_some() {
+            return Err(ProtocolError::field("edge", "is for the corner family"));
+        }
+        let Some(scan) = &s.scan else {
+            return Err(ProtocolError::field(
+                "scan",
+                "missing: the polygon family reads laser scans",
+            ));
+        };
+        // Check before changing anything: a refused scan leaves the session as it was.
+        scan.validate().map_err(|e| match e {
+            crate::protocol::laser::InvalidScan::Field { field, problem } => {
+                ProtocolError::field(format!("scan.{field}"), problem)
+            }
+        })?;
+        let guess = self.map_pose(s.pose);
+        let mut odometry = self.odometry;
+        odometry.moved(s.pose);
+        let reading = self
+            .mapper
+            .read(scan, &guess, odometry.since_scan)
+            .map_err(|e| ProtocolError::field("scan", e.to_string()))?;
+        self.odometry = odometry;
+        self.odometry.since_scan = 0.0;
+        self.odometry.tally.scans += 1;
+        let estimate = reading.estimate;
+        self.correction = estimate.compose(&s.pose.inverse());
+        self.scans.push(estimate.at());
+        self.failing = false;
+        let action = self.strategy.act(&Feedback::Scanned(reading.observation));
+        let localised = Localised {
+            pose: estimate,
+            correction: self.correction,
+            alignment: reading.alignment,
+            cleaning: reading.cleaning,
+        };
+        Ok((action, Some(localised)))
+    }
+}
+
+impl CornerRun {
+    fn new(s: &StartIn, c: &CornerIn, cost: CostModel) -> Result<Self, ProtocolError> {
+        let name = s.strategy.as_deref().unwrap_or(DEFAULT_CORNER_STRATEGY);
+        let setup = CornerSetup::new(c.distance, cost)
+            .map_err(|e| ProtocolError::field("corner.distance", e.to_string()))?;
+        let spec = c.belief.as_deref().unwrap_or(DEFAULT_BELIEF);
+        if spec.starts_with("histogram:") || spec.starts_with("observed:") {
+            return Err(ProtocolError::field(
+                "corner.belief",
+                "beliefs read from files are not accepted over the protocol; give uniform, normal or mix",
+            ));
+        }
+        let belief = AngleDistribution::parse(spec)
+            .map_err(|e| ProtocolError::field("corner.belief", e.to_string()))?;
+        let mut options = BuildOptions::default();
+        options.route = c.route.unwrap_or(options.route);
+        options.last_step = c.last_step.unwrap_or(options.last_step);
+        options.exprec = c.exprec.unwrap_or(options.exprec);
+        if let Some(d) = c.mdp_step_degrees {
+            if !(d.is_finite() && d > 0.0 && d <= 90.0) {
+                return Err(ProtocolError::field(
+                    "corner.mdp_step_degrees",
+                    format!("must be in (0, 90], got {}", Num(d)),
+                ));
+            }
+            options.mdp_step = d.to_radians();
+        }
+        let list = registry::build(name, &setup, &belief, &options)
+            .map_err(|e| ProtocolError::field("strategy", e.to_string()))?;
+        Ok(Self {
+            strategy: list.into_strategy(name),
+            setup,
+            frame: s.pose,
+            odometry: Odometry::new(s.pose),
+            angle: 0.0,
+            target: None,
+        })
+    }
+
+    /// The strategy's action, its stop as a point of the corner frame.
+    fn act(&mut self, feedback: CornerFeedback) -> Action<Point> {
+        match self.strategy.act(feedback) {
+            Action::MoveTo { to } => {
+                self.target = Some(to);
+                Action::MoveTo {
+                    to: self.setup.position(to.angle.min(crate::protocol::corner::CORNER)),
+                }
+            }
+            Action::Scan => Action::Scan,
+            Action::Done => Action::Done,
+        }
+    }
+
+    fn scanned(&mut self, s: &ScanIn) -> Result<Action<Point>, ProtocolError> {
+        if s.scan.is_some() {
+            return Err(ProtocolError::field(
+                "scan",
+                "is for the polygon family; the corner family reports `edge`",
+            ));
+        }
+        let observation = match s.edge {
+            None => CornerObservation::Hidden,
+            Some(theta) if theta.is_finite() && theta >= 0.0 => CornerObservation::Seen { theta },
+            Some(theta) => {
+                return Err(ProtocolError::field(
+                    "edge",
+                    format!("must be an angle >= 0 in radians, got {}", Num(theta)),
+                ));
+            }
+        };
+        self.odometry.moved(s.pose);
+        self.odometry.tally.scans += 1;
+        Ok(self.act(CornerFeedback::Scanned(observation)))
+    }
+}

@@ -1,0 +1,154 @@
+//! The trip a polygon strategy is driving, and what it does when a move fails.
+//!
+//! A trip starts where the last scan was taken and runs through waypoints that all lie in
+//! space seen free. When the robot reports that it could not reach a waypoint, the strategy
+//! drops the trip's goal (the caller blacklists it) and the robot drives back the way it
+//! came, through the waypoints it did reach, to where the trip started: from there every
+//! route the strategy knows is valid again, and it plans anew. A way back that fails too is
+//! tried again, up to [`MAX_MOVE_FAILURES`] failures in a row; then the strategy is done (the
+//! robot is stuck where it came from).
+
+use serde::{Deserialize, Serialize};
+
+use crate::kernel::Point;
+use crate::protocol::Action;
+
+/// How many moves may fail in a row (no scan, no arrival between them) before a strategy
+/// gives up: the robot cannot even drive back the way it came.
+pub const MAX_MOVE_FAILURES: u32 = 3;
+
+/// A trip: the waypoints still to drive, and those reached since it started.
+#[derive(Debug, Clone, Default, PartialEq, Serialize, Deserialize)]
+pub(super) struct Trip {
+    /// Waypoints still to drive, last first.
+    route: Vec<Point>,
+    /// Where the trip started (the last scan's viewpoint).
+    #[serde(default)]
+    start: Option<Point>,
+    /// The waypoints reached since, in order.
+    #[serde(default)]
+    driven: Vec<Point>,
+    /// The waypoint the robot was sent to last.
+    #[serde(default)]
+    issued: Option<Point>,
+    /// Driving back to `start` after a failed move.
+    #[serde(default)]
+    returning: bool,
+    /// Failed moves since the last arrival.
+    #[serde(default)]
+    failures: u32,
+}
+
+/// What the strategy does after an arrival.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub(super) enum Next {
+    /// Drive on, or scan at the trip's end.
+    Act(Action<Point>),
+    /// Back where the trip started after a failed move: plan again from there.
+    Replan,
+}
+
+impl Trip {
+    /// A new trip from the scan at `start`, with no waypoints yet.
+    pub(super) fn begin(&mut self, start: Point) {
+        *self = Self { start: Some(start), ..Self::default() };
+    }
+
+    /// Sets the waypoints to drive (last first), replacing any left.
+    pub(super) fn set_route(&mut self, route: Vec<Point>) {
+        self.route = route;
+        self.returning = false;
+    }
+
+    /// The next action: the next waypoint, or the scan at the trip's end.
+    pub(super) fn next_move(&mut self) -> Action<Point> {
+        match self.route.pop() {
+            Some(p) => {
+                self.issued = Some(p);
+                Action::MoveTo { to: p }
+            }
+            None => Action::Scan,
+        }
+    }
+
+    /// The robot reached the waypoint it was sent to.
+    pub(super) fn arrived(&mut self) -> Next {
+        self.failures = 0;
+        if let Some(p) = self.issued.take() {
+            if self.returning {
+                self.driven.pop();
+            } else {
+                self.driven.push(p);
+            }
+        }
+        if self.returning && self.route.is_empty() {
+            self.returning = false;
+            self.driven.clear();
+            return Next::Replan;
+        }
+        Next::Act(self.next_move())
+    }
+
+    /// The robot could not reach the waypoint it was sent to: the way back to where the trip
+    /// started, or done after [`MAX_MOVE_FAILURES`] failures in a row or with no start known.
+    /// The caller drops the trip's goal before asking.
+    pub(super) fn failed(&mut self) -> Action<Point> {
+        self.failures += 1;
+        let Some(start) = self.start else { return Action::Done };
+        if self.failures > MAX_MOVE_FAILURES {
+            return Action::Done;
+        }
+        if self.returning {
+            // The way back failed: try the same waypoint again.
+            if let Some(p) = self.issued.take() {
+                self.route.push(p);
+            }
+        } else {
+            // Back through the waypoints reached, latest first, to the start.
+            let mut back = vec![start];
+            back.extend_from_slice(&self.driven);
+            self.route = back;
+            self.returning = true;
+            self.issued = None;
+        }
+        self.next_move()
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn a_failed_move_drives_back_through_the_waypoints_reached_then_replans() {
+        let mut t = Trip::default();
+        t.begin([0.0, 0.0]);
+        t.set_route(vec![[3.0, 0.0], [2.0, 0.0], [1.0, 0.0]]);
+        assert_eq!(t.next_move(), Action::MoveTo { to: [1.0, 0.0] });
+        assert_eq!(t.arrived(), Next::Act(Action::MoveTo { to: [2.0, 0.0] }));
+        assert_eq!(t.arrived(), Next::Act(Action::MoveTo { to: [3.0, 0.0] }));
+        // Blocked between (2, 0) and (3, 0): back to (2, 0), (1, 0), then the start.
+        assert_eq!(t.failed(), Action::MoveTo { to: [2.0, 0.0] });
+        assert!(t.returning);
+        assert_eq!(t.arrived(), Next::Act(Action::MoveTo { to: [1.0, 0.0] }));
+        // The way back fails once: the same waypoint again.
+        assert_eq!(t.failed(), Action::MoveTo { to: [1.0, 0.0] });
+        assert_eq!(t.arrived(), Next::Act(Action::MoveTo { to: [0.0, 0.0] }));
+        assert_eq!(t.arrived(), Next::Replan);
+        assert!(!t.returning);
+    }
+
+    #[test]
+    fn a_robot_that_cannot_drive_back_gives_up() {
+        let mut t = Trip::default();
+        t.begin([0.0, 0.0]);
+        t.set_route(vec![[1.0, 0.0]]);
+        assert_eq!(t.next_move(), Action::MoveTo { to: [1.0, 0.0] });
+        for _ in 0..MAX_MOVE_FAILURES {
+            assert_eq!(t.failed(), Action::MoveTo { to: [0.0, 0.0] });
+        }
+        assert_eq!(t.failed(), Action::Done);
+        // Without a start (no scan yet), nothing to return to.
+        assert_eq!(Trip::default().failed(), Action::Done);
+    }
+}
