@@ -46,6 +46,7 @@ pub(crate) fn run(a: &BenchArgs, g: &Global) -> anyhow::Result<()> {
         BenchTarget::Roi => return bench_roi(a, g),
         BenchTarget::Floors => return bench_floors(a, g),
         BenchTarget::Scans => return bench_scans(a, g),
+        BenchTarget::Serve => return bench_serve(a, g),
         _ => {}
     }
     let (name, n, secs, ops) = match a.target {
@@ -287,6 +288,69 @@ fn bench_scans(a: &BenchArgs, g: &Global) -> anyhow::Result<()> {
         "pairs_within_m": 3.0, "initial_error": {"shift_m": 0.3, "turn_deg": 10.0},
         "converged_when": {"shift_m": stopscan::experiment::scans::CONVERGED_SHIFT, "turn_deg": 1.0},
         "result": r, "seconds": t.elapsed().as_secs_f64(),
+    });
+    emit(g, &value, true, |w| {
+        writeln!(w, "{}", serde_json::to_string_pretty(&value).unwrap_or_default())
+    })
+}
+
+fn bench_serve(a: &BenchArgs, g: &Global) -> anyhow::Result<()> {
+    use stopscan::pipeline::mission::{MissionRun, MissionSpec, RegionSource};
+    use stopscan::protocol::polygon::Footprint;
+    use stopscan::world::polygon::PolygonWorld;
+    let (name, env) = match &a.env {
+        Some(path) => (path.display().to_string(), stopscan::io::read_environment(path)?),
+        None => {
+            let text = stopscan::pipeline::explore::OFFICE_GEOJSON;
+            let env = stopscan::io::text_formats::parse_geojson(text, "built-in office floor")?;
+            ("office (built-in)".to_string(), env)
+        }
+    };
+    let strategy = a
+        .strategies
+        .as_deref()
+        .and_then(|s| s.split(',').next())
+        .unwrap_or("cost_aware")
+        .to_string();
+    let start = env.start.unwrap_or_else(|| env.domain.rings()[0][0]);
+    let world = PolygonWorld::with_robot(env.domain, None, &Footprint::disc(0.2)?, Some(start))?;
+    let start = world.reach().map_or(start, |r| r.start());
+    let dir = std::env::temp_dir().join(format!("stopscan-bench-serve-{}", std::process::id()));
+    std::fs::create_dir_all(&dir)?;
+    let r = stopscan::pipeline::serve::bench::bench(&world, start, &strategy, g.seed, &dir)?;
+    // `roi --state`: the same mission with and without its journal.
+    let roi_spec = |trace: bool| MissionSpec {
+        source: RegionSource::Random { cells: 3000, seed: g.seed, cell_size: 1.0 },
+        drift: stopscan::world::grid::Drift::default(),
+        sensor: stopscan::world::grid::GridSensor::Ideal,
+        robots: 4,
+        cost: CostModel::default(),
+        battery_s: None,
+        search: None,
+        recording: stopscan::sim::Recording::PATHS,
+        seed: g.seed,
+        out: dir.join(if trace { "a.json" } else { "b.json" }),
+        svg: dir.join(if trace { "a.svg" } else { "b.svg" }),
+        trace: None,
+    };
+    let roi = |journal: bool| -> anyhow::Result<f64> {
+        let spec = roi_spec(journal);
+        let region = spec.source.load()?;
+        let state = dir.join("state.jsonl");
+        let t = Instant::now();
+        MissionRun::start(spec, region)?.fly(journal.then_some(state.as_path()), &mut |_| {})?;
+        Ok(t.elapsed().as_secs_f64())
+    };
+    let (without, with) = (roi(false)?, roi(true)?);
+    let roi_steps = std::fs::read_to_string(dir.join("state.jsonl"))?.lines().count() - 1;
+    let _ = std::fs::remove_dir_all(&dir);
+    let value = json!({
+        "name": "serve", "environment": name, "seed": g.seed, "result": r,
+        "roi_state_journal": {
+            "cells": 3000, "robots": 4, "steps": roi_steps,
+            "seconds_without": without, "seconds_with": with,
+            "us_per_step": (with - without) * 1e6 / roi_steps as f64,
+        },
     });
     emit(g, &value, true, |w| {
         writeln!(w, "{}", serde_json::to_string_pretty(&value).unwrap_or_default())

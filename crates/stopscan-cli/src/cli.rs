@@ -466,17 +466,13 @@ pub(crate) struct RoiArgs {
     /// resumes from the vertex it left (the field experiment).
     #[arg(long, allow_negative_numbers = true, conflicts_with = "resume")]
     pub(crate) battery_s: Option<f64>,
-    /// Write the mission state here (atomically) at most every --state-interval seconds and at
-    /// the end, for --resume.
+    /// Journal the mission here, for --resume: the state it starts from, then one line per
+    /// step, each written before the next step.
     #[arg(long, conflicts_with = "resume")]
     pub(crate) state: Option<PathBuf>,
-    /// Seconds of wall clock between two writes of --state (0: after every step; each write
-    /// costs time in proportion to the mission).
-    #[arg(long, allow_negative_numbers = true, default_value_t = 1.0)]
-    pub(crate) state_interval: f64,
-    /// Carry on with the mission saved in STATE (and keep writing it there); the mission's
-    /// settings, and its --trace, come from STATE, so only --out, --svg, --trace,
-    /// --state-interval and --format may be given with it.
+    /// Carry on with the mission journaled in STATE (and keep journaling there); the mission's
+    /// settings, and its --trace, come from STATE, so only --out, --svg, --trace and --format
+    /// may be given with it.
     #[arg(long, value_name = "STATE")]
     pub(crate) resume: Option<PathBuf>,
     /// Side of a cell, metres (for polygons, the grid's cell; otherwise the scale).
@@ -639,6 +635,11 @@ pub(crate) enum BenchTarget {
     /// convergence on --n scan pairs (default 1,000) within 3 m of each other, from up to
     /// 0.3 m and 10° of odometry error, on --env (default: the built-in office).
     Scans,
+    /// `stopscan serve`: a simulated robot explores --env (default: the built-in office)
+    /// through the server with the first of --strategies (default cost_aware): the server's
+    /// work and the TCP round trip per step, the journal's write per step (flushed, and with
+    /// fsync), resuming from the journal, and `roi --state`'s journal write per step.
+    Serve,
 }
 
 #[derive(Debug, Args)]

@@ -6,7 +6,6 @@
 
 use std::io::Write;
 use std::path::PathBuf;
-use std::time::Duration;
 
 use anyhow::{Context, bail};
 use stopscan::kernel::Num;
@@ -98,12 +97,6 @@ fn fresh(a: &RoiArgs, g: &Global) -> anyhow::Result<MissionRun> {
         bail!(
             "--frames must be between 1 and {MAX_FRAMES} (the paper votes 3 of 5), got {}",
             a.frames
-        );
-    }
-    if !(a.state_interval.is_finite() && a.state_interval >= 0.0) {
-        bail!(
-            "--state-interval must be a non-negative number of seconds, got {}",
-            Num(a.state_interval)
         );
     }
     let source = match (&a.grid, a.random) {
@@ -198,8 +191,7 @@ pub(crate) fn run(a: &RoiArgs, g: &Global) -> anyhow::Result<()> {
         None => (fresh(a, g)?, a.state.clone()),
     };
     let spinner = Spinner::new();
-    let interval = Duration::from_secs_f64(a.state_interval.max(0.0));
-    let end = mission.fly(state.as_deref(), interval, &mut |m| spinner.show(m))?;
+    let end = mission.fly(state.as_deref(), &mut |m| spinner.show(m))?;
     drop(spinner);
     let record = &end.record;
     let stdout = std::io::stdout();

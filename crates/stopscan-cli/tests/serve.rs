@@ -13,6 +13,7 @@ use rand::{RngExt, SeedableRng};
 use rand_chacha::ChaCha8Rng;
 use serde_json::{Value, json};
 use stopscan::kernel::Point;
+use stopscan::pipeline::serve::client::SimClient;
 use stopscan::protocol::polygon::Footprint;
 use stopscan::sim::lidar::SimRobot;
 use stopscan::world::lidar::Lidar;
@@ -33,64 +34,18 @@ fn office() -> (PolygonWorld, Point) {
     (world, inst.start)
 }
 
-/// The robot's side of the protocol: it answers each reply with its next request.
-struct Client<'a> {
-    robot: SimRobot<'a>,
-    seq: u64,
-    strategy: &'a str,
-    /// Where the scans were truly taken.
-    truth: Vec<Point>,
-}
-
-impl<'a> Client<'a> {
-    fn new(world: &'a PolygonWorld, start: Point, strategy: &'a str, seed: u64) -> Self {
-        let lidar = Lidar { beams: 360, ..Lidar::default() };
-        Self {
-            robot: SimRobot::new(world, start, lidar, 0.01, seed),
-            seq: 0,
-            strategy,
-            truth: Vec::new(),
-        }
-    }
-
-    fn start(&self) -> String {
-        json!({
-            "protocol": "stopscan/1", "seq": 0, "type": "start", "strategy": self.strategy,
-            "pose": self.robot.odometry(),
-            "cost": {"scan_time": 30.0, "speed": 0.5},
-            "robot": {"radius": 0.2}, "sensor": {"sigma": 0.02}, "odometry_drift": 0.01,
-        })
-        .to_string()
-    }
-
-    /// The request that answers `reply`, or `None` when the session is over.
-    fn answer(&mut self, reply: &Value) -> Option<String> {
-        assert_eq!(reply["protocol"], "stopscan/1", "{reply}");
-        assert_eq!(reply["seq"], self.seq, "{reply}");
-        self.seq += 1;
-        let seq = self.seq;
-        let request = match reply["type"].as_str().unwrap() {
-            "scan" => {
-                let scan = self.robot.scan();
-                self.truth.push(self.robot.truth().at());
-                json!({"seq": seq, "type": "scan", "pose": self.robot.odometry(), "scan": scan})
-            }
-            "goal" => {
-                let g = &reply["goal"];
-                let drive = self.robot.drive([g["x"].as_f64().unwrap(), g["y"].as_f64().unwrap()]);
-                let pose = self.robot.odometry();
-                match drive.failed {
-                    None => json!({"seq": seq, "type": "arrived", "pose": pose}),
-                    Some(r) => {
-                        json!({"seq": seq, "type": "move_failed", "pose": pose, "reason": r})
-                    }
-                }
-            }
-            "done" => return None,
-            other => panic!("unexpected reply {other}: {reply}"),
-        };
-        Some(request.to_string())
-    }
+/// The robot's side of the protocol: a simulated robot (360-beam lidar, 1% drift) that
+/// answers each reply with its next request.
+fn client<'a>(world: &'a PolygonWorld, start: Point, strategy: &str, seed: u64) -> SimClient<'a> {
+    let lidar = Lidar { beams: 360, ..Lidar::default() };
+    let setup = json!({
+        "strategy": strategy, "cost": {"scan_time": 30.0, "speed": 0.5},
+        "robot": {"radius": 0.2}, "sensor": {"sigma": 0.02}, "odometry_drift": 0.01,
+    });
+    SimClient::new(
+        SimRobot::new(world, start, lidar, 0.01, seed),
+        setup.as_object().unwrap().clone(),
+    )
 }
 
 /// A server process on pipes.
@@ -146,11 +101,11 @@ fn run_session(
     journal: &Path,
 ) -> (Value, Vec<Point>) {
     let mut server = Server::spawn(&["--journal", journal.to_str().unwrap()]);
-    let mut client = Client::new(world, start, strategy, 7);
+    let mut client = client(world, start, strategy, 7);
     let mut line = client.start();
     loop {
         let reply = server.ask(&line).expect("the server answers");
-        match client.answer(&reply) {
+        match client.answer(&reply).unwrap() {
             Some(next) => line = next,
             None => {
                 server.finish();
@@ -219,6 +174,25 @@ fn a_simulated_robot_explores_an_office_over_standard_input() {
         let last: Value = serde_json::from_str(lines[lines.len() - 1]).unwrap();
         assert_eq!(last["reply"], done);
     }
+    check_schema(&[dir.join("cost_aware.jsonl"), dir.join("explore_lite.jsonl")]);
+}
+
+/// Every request and reply of the journals matches docs/protocol.schema.json, checked by an
+/// independent validator (Python's jsonschema, which .ci/run installs).
+fn check_schema(journals: &[std::path::PathBuf]) {
+    let script = Path::new(env!("CARGO_MANIFEST_DIR")).join("../../docs/check_protocol_schema.py");
+    let has = Command::new("python3").args(["-c", "import jsonschema"]).output();
+    if !has.is_ok_and(|o| o.status.success()) {
+        eprintln!("skipped: the schema check needs python3 with jsonschema (.ci/run installs it)");
+        return;
+    }
+    let out = Command::new("python3").arg(script).args(journals).output().unwrap();
+    assert!(
+        out.status.success(),
+        "{}{}",
+        String::from_utf8_lossy(&out.stdout),
+        String::from_utf8_lossy(&out.stderr)
+    );
 }
 
 #[test]
@@ -234,7 +208,7 @@ fn kill_9_at_random_moments_then_resume_ends_byte_identical() {
     let j = journal.to_str().unwrap();
     let mut rng = ChaCha8Rng::seed_from_u64(11);
     let mut server = Server::spawn(&["--journal", j]);
-    let mut client = Client::new(&world, start, "nearest_frontier", 7);
+    let mut client = client(&world, start, "nearest_frontier", 7);
     let mut line = client.start();
     let mut kills = 0;
     let last = loop {
@@ -255,7 +229,7 @@ fn kill_9_at_random_moments_then_resume_ends_byte_identical() {
                 continue;
             }
         };
-        match client.answer(&reply) {
+        match client.answer(&reply).unwrap() {
             Some(next) => line = next,
             None => break reply,
         }
@@ -283,7 +257,7 @@ fn the_same_session_over_tcp() {
         (BufReader::new(s.try_clone().unwrap()), s)
     };
     let (mut reader, mut writer) = connect();
-    let mut client = Client::new(&world, start, "depth_first", 3);
+    let mut client = client(&world, start, "depth_first", 3);
     let mut line = client.start();
     let mut reconnected = false;
     loop {
@@ -302,7 +276,7 @@ fn the_same_session_over_tcp() {
             reader.read_line(&mut again).unwrap();
             assert_eq!(serde_json::from_str::<Value>(&again).unwrap(), reply);
         }
-        match client.answer(&reply) {
+        match client.answer(&reply).unwrap() {
             Some(next) => line = next,
             None => {
                 assert_eq!(reply["reason"], "explored", "{reply}");
@@ -395,7 +369,10 @@ fn malformed_messages_get_errors_that_name_the_field() {
 
 #[test]
 fn a_corner_search_ends_when_the_robot_finds_the_target() {
-    let mut server = Server::spawn(&[]);
+    let dir = temp("serve-corner");
+    std::fs::create_dir_all(&dir).unwrap();
+    let journal = dir.join("corner.jsonl");
+    let mut server = Server::spawn(&["--journal", journal.to_str().unwrap()]);
     let start = json!({"protocol": "stopscan/1", "seq": 0, "type": "start", "family": "corner",
         "strategy": "unirec", "pose": {"x": 1.0, "y": 2.0, "theta": 0.5},
         "cost": {"scan_time": 2.0, "speed": 0.5}, "corner": {"distance": 10.0}});
@@ -428,4 +405,5 @@ fn a_corner_search_ends_when_the_robot_finds_the_target() {
     assert_eq!(done["summary"]["scans"], 1);
     assert_eq!(done["summary"]["strategy"], "unirec");
     server.finish();
+    check_schema(&[journal]);
 }

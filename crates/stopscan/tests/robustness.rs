@@ -191,7 +191,9 @@ impl PolygonStrategy for Pendulum {
     fn act(&mut self, feedback: &PolygonFeedback) -> Action<Point> {
         self.0 += 1;
         match feedback {
-            PolygonFeedback::Arrived | PolygonFeedback::Start { .. } => Action::Scan,
+            PolygonFeedback::Arrived
+            | PolygonFeedback::Start { .. }
+            | PolygonFeedback::MoveFailed { .. } => Action::Scan,
             PolygonFeedback::Scanned(_) => {
                 Action::MoveTo { to: if self.0 % 4 == 2 { [3.0, 1.0] } else { [1.0, 1.0] } }
             }

@@ -1,18 +1,21 @@
 //! A region-of-interest mission as `stopscan roi` flies it: a team explores a region
 //! (Algorithm 1, optionally with the field pipeline's camera, lawn-mowing search and battery),
-//! writing its whole state to a file as it goes so that it can be resumed after a crash, and
-//! ending with the run record and the SVG replay.
+//! journaling every step so that it can be resumed after a crash, and ending with the run
+//! record and the SVG replay.
 //!
-//! The state file (format [`MISSION_FORMAT`]) holds where the region comes from, the drift,
-//! the sensor, the seed, the output paths, the event trace and its length, and the mission
-//! itself ([`Mission`]). A resumed mission ends with the same record, and the same trace, as
+//! The state file (format [`MISSION_FORMAT`]) is an append-only journal. Its first line is the
+//! state the mission started (or resumed) from: where the region comes from, the drift, the
+//! sensor, the seed, the output paths, the event trace and its length, and the mission itself
+//! ([`Mission`]). Then one short line per step, `{"steps":N,"trace_len":B}`, written before
+//! the next step begins. The mission is deterministic given its state, so a resumed mission
+//! rebuilds the state of the first line and replays the steps the journal records; a line torn
+//! by a crash is cut off. A resumed mission ends with the same record, and the same trace, as
 //! an uninterrupted one.
 
 use std::cell::Cell as Shared;
 use std::io::Write;
 use std::path::{Path, PathBuf};
 use std::rc::Rc;
-use std::time::{Duration, Instant};
 
 use serde::{Deserialize, Serialize};
 
@@ -28,8 +31,9 @@ use crate::sim::{Flow, JsonLinesTrace, NoObserver, Recording, SimError};
 use crate::world::grid::{Drift, GridRoi, GridSensor, GridWorld, InvalidRoi};
 
 /// The state file's format. `/2`: the trace and its length are recorded; a search's lawn is
-/// computed, not listed.
-pub const MISSION_FORMAT: &str = "stopscan-mission/2";
+/// computed, not listed. `/3`: a journal (the state, then one line per step) instead of the
+/// whole state rewritten (about 4 ms per write at 3,000 cells).
+pub const MISSION_FORMAT: &str = "stopscan-mission/3";
 
 /// Where the region comes from, so that a resumed mission rebuilds the same world.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
@@ -107,6 +111,16 @@ pub struct MissionState {
     pub trace_len: u64,
     /// The mission.
     pub mission: Mission,
+    /// The steps the journal records beyond `mission`'s (replayed on resume).
+    #[serde(skip)]
+    pub journaled_steps: u64,
+}
+
+/// One journal line after the state: the team's step count and the trace's length after it.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+struct StepLine {
+    steps: u64,
+    trace_len: u64,
 }
 
 /// What a fresh mission is made of.
@@ -189,6 +203,24 @@ pub enum MissionRunError {
         /// The system error.
         source: std::io::Error,
     },
+    /// A step line of the journal does not parse.
+    #[error("{}, line {line}: not a step of the mission journal: {problem}", .path.display())]
+    Journal {
+        /// The journal.
+        path: PathBuf,
+        /// The line, from 1.
+        line: usize,
+        /// Why.
+        problem: String,
+    },
+    /// The journal cannot be written.
+    #[error("cannot write {}", .path.display())]
+    WriteJournal {
+        /// The journal.
+        path: PathBuf,
+        /// The system error.
+        source: std::io::Error,
+    },
     /// The trace is shorter than the state recorded: it was changed since.
     #[error(
         "{}: the trace has {len} bytes, fewer than the {keep} the mission state recorded; it was changed since (give --trace NEW to start a new one)",
@@ -222,28 +254,51 @@ fn world_of(roi: GridRoi, drift: Drift, sensor: GridSensor, seed: u64, search: b
 }
 
 impl MissionState {
-    /// Reads a state file.
+    /// Reads a state journal: the state on its first line, and the steps recorded after it
+    /// (the last complete line; a line torn by a crash is ignored).
     ///
     /// # Errors
     /// [`MissionRunError::ReadState`], [`MissionRunError::NotAState`] (with the line and
-    /// column) or [`MissionRunError::Format`].
+    /// column), [`MissionRunError::Format`], or [`MissionRunError::Journal`] for a step line
+    /// that does not parse.
     pub fn read(path: &Path) -> Result<Self, MissionRunError> {
         let text = std::fs::read_to_string(path)
             .map_err(|source| MissionRunError::ReadState { path: path.to_path_buf(), source })?;
-        let m: Self = serde_json::from_str(&text)
+        let mut lines = text.split_inclusive('\n');
+        let first = lines.next().unwrap_or_default();
+        let mut m: Self = serde_json::from_str(first)
             .map_err(|source| MissionRunError::NotAState { path: path.to_path_buf(), source })?;
-        if m.format != MISSION_FORMAT {
+        // A `/2` state is a `/3` journal's first line with no step after it.
+        if m.format != MISSION_FORMAT && m.format != "stopscan-mission/2" {
             return Err(MissionRunError::Format { path: path.to_path_buf(), found: m.format });
+        }
+        m.format = MISSION_FORMAT.into();
+        for (i, line) in lines.enumerate() {
+            if !line.ends_with('\n') {
+                break;
+            }
+            let step: StepLine =
+                serde_json::from_str(line).map_err(|e| MissionRunError::Journal {
+                    path: path.to_path_buf(),
+                    line: i + 2,
+                    problem: e.to_string(),
+                })?;
+            m.journaled_steps = step.steps;
+            m.trace_len = step.trace_len;
         }
         Ok(m)
     }
 
-    /// Writes the state file atomically (a crash leaves the previous state or this one).
+    /// Starts a state journal with this state: one line, written atomically (a crash leaves
+    /// the previous journal or this one).
     ///
     /// # Errors
     /// [`WriteError`] naming the file.
     pub fn write(&self, path: &Path) -> Result<(), WriteError> {
-        atomic::write(path, |w| serde_json::to_writer(w, self).map_err(std::io::Error::from))
+        atomic::write(path, |w| {
+            serde_json::to_writer(&mut *w, self).map_err(std::io::Error::from)?;
+            w.write_all(b"\n")
+        })
     }
 
     /// Sends a resumed mission's outputs elsewhere: `out` (and the replay beside it, with
@@ -276,16 +331,22 @@ impl MissionState {
         Ok(())
     }
 
-    /// The mission ready to carry on: its world rebuilt and its records restored.
+    /// The mission ready to carry on: its world rebuilt, its records restored, and the steps
+    /// the journal recorded replayed.
     ///
     /// # Errors
-    /// [`MissionRunError`] if the region no longer loads.
-    pub fn resume(self) -> Result<MissionRun, MissionRunError> {
+    /// [`MissionRunError`] if the region no longer loads or a replayed step fails.
+    pub fn resume(mut self) -> Result<MissionRun, MissionRunError> {
         let roi = self.source.load()?;
         let search = self.mission.plan.search.is_some();
         let mut world = world_of(roi, self.drift, self.sensor.clone(), self.seed, search);
         if self.mission.team.steps > 0 {
             world = self.mission.restore(world);
+        }
+        while self.mission.team.steps < self.journaled_steps {
+            if self.mission.step(&mut world, &mut NoObserver)? != Flow::Continue {
+                break;
+            }
         }
         Ok(MissionRun { state: self, world })
     }
@@ -380,15 +441,17 @@ impl MissionRun {
             trace: spec.trace.as_deref().map(absolute),
             trace_len: 0,
             mission,
+            journaled_steps: 0,
         };
         Ok(Self { state, world })
     }
 
-    /// Flies the mission to its end: the trace is streamed as it goes, the state is written to
-    /// `save` (if given) at most once per `interval` of wall clock and at the end, and the run
-    /// record and the replay are written to the state's `out` and `svg`. `progress` hears the
-    /// steps and the mission time every 256 steps. Every step's state is consistent, so a
-    /// resume from any of them ends with the same record.
+    /// Flies the mission to its end: the trace is streamed as it goes; with a journal `save`,
+    /// the state is written to it first (atomically, replacing it: a resumed mission starts a
+    /// compact journal from where it stands) and then one line per step, before the next
+    /// step; the run record and the replay are written to the state's `out` and `svg`.
+    /// `progress` hears the steps and the mission time every 256 steps. A resume from any
+    /// step ends with the same record.
     ///
     /// # Errors
     /// [`MissionRunError`]: a strategy misbehaves, the mission exceeds its step limit, or an
@@ -397,7 +460,6 @@ impl MissionRun {
     pub fn fly(
         mut self,
         save: Option<&Path>,
-        interval: Duration,
         progress: Progress,
     ) -> Result<MissionOutcome, MissionRunError> {
         let (file, world) = (&mut self.state, &mut self.world);
@@ -410,8 +472,19 @@ impl MissionRun {
             }
             None => None,
         };
+        let mut journal = match save {
+            Some(p) => {
+                file.mission.snapshot(world);
+                file.journaled_steps = file.mission.team.steps;
+                file.write(p)?;
+                let cannot =
+                    |source| MissionRunError::WriteJournal { path: p.to_path_buf(), source };
+                let f = std::fs::OpenOptions::new().append(true).open(p).map_err(cannot)?;
+                Some((p, f))
+            }
+            None => None,
+        };
         let limit = file.mission.step_limit(world);
-        let mut last_write: Option<Instant> = None;
         loop {
             if file.mission.team.steps >= limit {
                 return Err(MissionRunError::StepLimit(limit));
@@ -424,16 +497,15 @@ impl MissionRun {
                 let path = file.trace.clone().unwrap_or_else(|| PathBuf::from("trace"));
                 return Err(MissionRunError::Trace { path, source });
             }
-            // The state, at most once per interval and at the end: each write costs time in
-            // proportion to the mission.
-            let done = flow != Flow::Continue;
-            if let Some(p) = save
-                && (done || last_write.is_none_or(|t| t.elapsed() >= interval))
-            {
-                file.mission.snapshot(world);
-                file.trace_len = bytes.get();
-                file.write(p)?;
-                last_write = Some(Instant::now());
+            if let Some((p, f)) = journal.as_mut() {
+                let line = StepLine { steps: file.mission.team.steps, trace_len: bytes.get() };
+                let mut text = serde_json::to_vec(&line).expect("a step line serialises");
+                text.push(b'\n');
+                // One write per line: a crash leaves it whole or torn at its end.
+                f.write_all(&text).map_err(|source| MissionRunError::WriteJournal {
+                    path: p.to_path_buf(),
+                    source,
+                })?;
             }
             if file.mission.team.steps % 256 == 0 {
                 progress(&format!(
@@ -442,7 +514,7 @@ impl MissionRun {
                     file.mission.team.makespan()
                 ));
             }
-            if done {
+            if flow != Flow::Continue {
                 break;
             }
         }
@@ -490,7 +562,7 @@ mod tests {
         let whole = {
             let s = spec(&dir);
             let roi = s.source.load().unwrap();
-            MissionRun::start(s, roi).unwrap().fly(None, Duration::ZERO, &mut |_| {}).unwrap()
+            MissionRun::start(s, roi).unwrap().fly(None, &mut |_| {}).unwrap()
         };
         let trace = std::fs::read(dir.join("events.jsonl")).unwrap();
         // Fly again, stopping after 40 steps with the state written.
@@ -521,9 +593,38 @@ mod tests {
             .unwrap();
         let resumed = MissionState::read(&state).unwrap().resume().unwrap();
         assert!(resumed.state.mission.team.steps == 40);
-        let end = resumed.fly(Some(&state), Duration::ZERO, &mut |_| {}).unwrap();
+        let end = resumed.fly(Some(&state), &mut |_| {}).unwrap();
         assert_eq!(end.record, whole.record);
         assert_eq!(std::fs::read(dir.join("events.jsonl")).unwrap(), trace);
+    }
+
+    /// A journal cut after any step, with a torn line at its end (a crash mid-write), resumes
+    /// to the same record and trace; the resumed mission starts a compact journal.
+    #[test]
+    fn a_journal_cut_by_a_crash_resumes_to_the_same_record_and_trace() {
+        let dir = temp("journal");
+        let state = dir.join("state.jsonl");
+        let whole = {
+            let s = spec(&dir);
+            let roi = s.source.load().unwrap();
+            MissionRun::start(s, roi).unwrap().fly(Some(&state), &mut |_| {}).unwrap()
+        };
+        let trace = std::fs::read(dir.join("events.jsonl")).unwrap();
+        let journal = std::fs::read_to_string(&state).unwrap();
+        let lines: Vec<&str> = journal.split_inclusive('\n').collect();
+        assert!(lines.len() > 20, "one line per step after the state");
+        for keep in [0, 1, 17, lines.len() - 2] {
+            let mut cut: String = lines[..=keep].concat();
+            cut.push_str(&lines[keep + 1][..5]);
+            std::fs::write(&state, cut).unwrap();
+            let resumed = MissionState::read(&state).unwrap().resume().unwrap();
+            assert_eq!(resumed.state.mission.team.steps, keep as u64);
+            let end = resumed.fly(Some(&state), &mut |_| {}).unwrap();
+            assert_eq!(end.record, whole.record, "cut after {keep} steps");
+            assert_eq!(std::fs::read(dir.join("events.jsonl")).unwrap(), trace);
+            let again = std::fs::read_to_string(&state).unwrap();
+            assert_eq!(again.lines().count(), lines.len() - keep, "a compact journal");
+        }
     }
 
     #[test]
@@ -538,7 +639,7 @@ mod tests {
         run.state.write(&path).unwrap();
         let e = MissionState::read(&path).unwrap_err().to_string();
         assert!(
-            e.ends_with("format \"stopscan-mission/1\", expected \"stopscan-mission/2\""),
+            e.ends_with("format \"stopscan-mission/1\", expected \"stopscan-mission/3\""),
             "{e}"
         );
         std::fs::write(&path, "{\"format\": 3").unwrap();

@@ -18,15 +18,19 @@
 //! The transport (standard input and output, or TCP) is the caller's: a [`Server`] turns one
 //! request line into one reply line.
 
+pub mod bench;
+pub mod client;
 pub mod message;
 mod session;
 
 use std::fs::{File, OpenOptions};
 use std::hash::{DefaultHasher, Hash, Hasher};
-use std::io::{BufRead, BufReader, Seek, SeekFrom, Write};
+use std::io::{BufRead, BufReader, Read, Seek, SeekFrom, Write};
 use std::path::{Path, PathBuf};
 
-pub use message::{DoneReason, PROTOCOL, ProtocolError, Reply, ReplyBody, Request, parse};
+pub use message::{
+    DoneReason, MAX_LINE, PROTOCOL, ProtocolError, Reply, ReplyBody, Request, parse,
+};
 pub use session::{
     DEFAULT_BELIEF, DEFAULT_CORNER_STRATEGY, DEFAULT_DRIFT, DEFAULT_POLYGON_STRATEGY,
     DEFAULT_SIGMA, Session,
@@ -92,6 +96,8 @@ struct Journal {
     path: PathBuf,
     file: File,
     fsync: bool,
+    /// Time spent writing, for `bench serve`.
+    spent: std::time::Duration,
 }
 
 impl Journal {
@@ -100,6 +106,7 @@ impl Journal {
     }
 
     fn append(&mut self, line: &str) -> Result<(), ServeError> {
+        let t = std::time::Instant::now();
         let mut bytes = Vec::with_capacity(line.len() + 1);
         bytes.extend_from_slice(line.as_bytes());
         bytes.push(b'\n');
@@ -108,6 +115,7 @@ impl Journal {
         if self.fsync {
             self.file.sync_data().map_err(|e| self.io(e))?;
         }
+        self.spent += t.elapsed();
         Ok(())
     }
 }
@@ -144,7 +152,12 @@ impl Server {
             return Err(ServeError::Exists(path.to_path_buf()));
         }
         let file = OpenOptions::new().create(true).append(true).open(path).map_err(io)?;
-        let mut journal = Journal { path: path.to_path_buf(), file, fsync: options.fsync };
+        let mut journal = Journal {
+            path: path.to_path_buf(),
+            file,
+            fsync: options.fsync,
+            spent: std::time::Duration::ZERO,
+        };
         let header = serde_json::json!({
             "format": JOURNAL_FORMAT,
             "protocol": PROTOCOL,
@@ -219,13 +232,23 @@ impl Server {
         // Cut a torn last line.
         file.set_len(whole).map_err(io)?;
         file.seek(SeekFrom::End(0)).map_err(io)?;
-        server.journal = Some(Journal { path: path.to_path_buf(), file, fsync: options.fsync });
+        server.journal = Some(Journal {
+            path: path.to_path_buf(),
+            file,
+            fsync: options.fsync,
+            spent: std::time::Duration::ZERO,
+        });
         Ok(server)
     }
 
     /// Whether the session is over.
     pub fn is_done(&self) -> bool {
         self.session.over().is_some()
+    }
+
+    /// Seconds spent writing the journal so far.
+    pub fn journal_seconds(&self) -> f64 {
+        self.journal.as_ref().map_or(0.0, |j| j.spent.as_secs_f64())
     }
 
     /// Steps answered so far (the next `seq`).
@@ -294,4 +317,72 @@ impl Server {
             }
         }
     }
+}
+
+/// Answers every line of `input` on `output` (each reply flushed) until the input ends: the
+/// transport of `stopscan serve` on standard input and output, and on each TCP connection.
+/// A line longer than [`MAX_LINE`] is skipped and gets an error reply, as does one that is not
+/// UTF-8; blank lines are ignored.
+///
+/// # Errors
+/// [`ServeError`] if the journal cannot be written (stop the server), or an I/O error of
+/// the input or output (a dropped connection).
+pub fn serve_lines(
+    server: &mut Server,
+    mut input: impl BufRead,
+    mut output: impl Write,
+) -> Result<(), TransportError> {
+    let mut buf = Vec::new();
+    loop {
+        buf.clear();
+        let n = Read::take(&mut input, MAX_LINE as u64 + 1).read_until(b'\n', &mut buf)?;
+        if n == 0 {
+            return Ok(());
+        }
+        let reply = if buf.len() > MAX_LINE {
+            // Skip the rest of the line.
+            while !buf.ends_with(b"\n") {
+                buf.clear();
+                if Read::take(&mut input, MAX_LINE as u64).read_until(b'\n', &mut buf)? == 0 {
+                    break;
+                }
+            }
+            let e = ProtocolError {
+                field: None,
+                message: format!("line longer than {MAX_LINE} bytes; it was skipped"),
+            };
+            Reply::error(None, e).to_line()
+        } else {
+            match std::str::from_utf8(&buf) {
+                Ok(line) => {
+                    let line = line.trim_end_matches(['\n', '\r']);
+                    if line.trim().is_empty() {
+                        continue;
+                    }
+                    server.handle(line)?
+                }
+                Err(e) => {
+                    let e = ProtocolError { field: None, message: format!("not UTF-8: {e}") };
+                    Reply::error(None, e).to_line()
+                }
+            }
+        };
+        // One write per reply: split writes meet Nagle's algorithm and delayed ACKs on TCP
+        // (40 ms a step).
+        let mut bytes = reply.into_bytes();
+        bytes.push(b'\n');
+        output.write_all(&bytes)?;
+        output.flush()?;
+    }
+}
+
+/// Why [`serve_lines`] stopped.
+#[derive(Debug, thiserror::Error)]
+pub enum TransportError {
+    /// The journal failed: the server must stop.
+    #[error(transparent)]
+    Serve(#[from] ServeError),
+    /// Reading a request or writing a reply failed (a dropped connection).
+    #[error("connection: {0}")]
+    Io(#[from] std::io::Error),
 }
