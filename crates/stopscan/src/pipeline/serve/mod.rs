@@ -246,6 +246,11 @@ impl Server {
         self.session.over().is_some()
     }
 
+    /// The last reply of a step taken (after a resume: what the robot was last asked to do).
+    pub fn last_reply(&self) -> Option<&str> {
+        self.answered.last().map(|(_, r)| r.as_str())
+    }
+
     /// Seconds spent writing the journal so far.
     pub fn journal_seconds(&self) -> f64 {
         self.journal.as_ref().map_or(0.0, |j| j.spent.as_secs_f64())
