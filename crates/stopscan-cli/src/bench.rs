@@ -298,13 +298,12 @@ fn bench_serve(a: &BenchArgs, g: &Global) -> anyhow::Result<()> {
     use stopscan::pipeline::mission::{MissionRun, MissionSpec, RegionSource};
     use stopscan::protocol::polygon::Footprint;
     use stopscan::world::polygon::PolygonWorld;
-    let (name, env) = match &a.env {
-        Some(path) => (path.display().to_string(), stopscan::io::read_environment(path)?),
-        None => {
-            let text = stopscan::pipeline::explore::OFFICE_GEOJSON;
-            let env = stopscan::io::text_formats::parse_geojson(text, "built-in office floor")?;
-            ("office (built-in)".to_string(), env)
-        }
+    let (name, env) = if let Some(path) = &a.env {
+        (path.display().to_string(), stopscan::io::read_environment(path)?)
+    } else {
+        let text = stopscan::pipeline::explore::OFFICE_GEOJSON;
+        let env = stopscan::io::text_formats::parse_geojson(text, "built-in office floor")?;
+        ("office (built-in)".to_string(), env)
     };
     let strategy = a
         .strategies
@@ -314,7 +313,7 @@ fn bench_serve(a: &BenchArgs, g: &Global) -> anyhow::Result<()> {
         .to_string();
     let start = env.start.unwrap_or_else(|| env.domain.rings()[0][0]);
     let world = PolygonWorld::with_robot(env.domain, None, &Footprint::disc(0.2)?, Some(start))?;
-    let start = world.reach().map_or(start, |r| r.start());
+    let start = world.reach().map_or(start, stopscan::world::polygon::Reach::start);
     let dir = std::env::temp_dir().join(format!("stopscan-bench-serve-{}", std::process::id()));
     std::fs::create_dir_all(&dir)?;
     let r = stopscan::pipeline::serve::bench::bench(&world, start, &strategy, g.seed, &dir)?;

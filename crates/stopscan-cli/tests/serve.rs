@@ -105,13 +105,11 @@ fn run_session(
     let mut line = client.start();
     loop {
         let reply = server.ask(&line).expect("the server answers");
-        match client.answer(&reply).unwrap() {
-            Some(next) => line = next,
-            None => {
-                server.finish();
-                return (reply, client.truth);
-            }
-        }
+        let Some(next) = client.answer(&reply).unwrap() else {
+            server.finish();
+            return (reply, client.truth);
+        };
+        line = next;
     }
 }
 
@@ -221,13 +219,10 @@ fn kill_9_at_random_moments_then_resume_ends_byte_identical() {
             server = Server::spawn(&["--resume", j]);
         }
         // A robot that gets no reply sends the same request again, to a resumed server.
-        let reply = match server.ask(&line) {
-            Some(r) => r,
-            None => {
-                server.kill();
-                server = Server::spawn(&["--resume", j]);
-                continue;
-            }
+        let Some(reply) = server.ask(&line) else {
+            server.kill();
+            server = Server::spawn(&["--resume", j]);
+            continue;
         };
         match client.answer(&reply).unwrap() {
             Some(next) => line = next,
@@ -276,13 +271,11 @@ fn the_same_session_over_tcp() {
             reader.read_line(&mut again).unwrap();
             assert_eq!(serde_json::from_str::<Value>(&again).unwrap(), reply);
         }
-        match client.answer(&reply).unwrap() {
-            Some(next) => line = next,
-            None => {
-                assert_eq!(reply["reason"], "explored", "{reply}");
-                break;
-            }
-        }
+        let Some(next) = client.answer(&reply).unwrap() else {
+            assert_eq!(reply["reason"], "explored", "{reply}");
+            break;
+        };
+        line = next;
     }
     drop((reader, writer));
     assert!(child.wait().unwrap().success(), "the server exits once the session is over");
@@ -326,7 +319,7 @@ fn malformed_messages_get_errors_that_name_the_field() {
     assert_eq!(reply["type"], "scan", "{reply}");
     let scan = |ranges: Value, extra: Value| {
         let mut m = json!({"seq": 1, "type": "scan", "pose": {"x": 0.0, "y": 0.0, "theta": 0.0},
-            "scan": {"angle_min": -3.14, "angle_increment": 0.0175, "range_min": 0.05, "range_max": 20.0, "ranges": ranges}});
+            "scan": {"angle_min": -3.0, "angle_increment": 0.0175, "range_min": 0.05, "range_max": 20.0, "ranges": ranges}});
         for (k, v) in extra.as_object().unwrap() {
             m["scan"][k] = v.clone();
         }

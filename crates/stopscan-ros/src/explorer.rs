@@ -297,16 +297,15 @@ async fn explore(o: &ExplorerOptions) -> anyhow::Result<Value> {
         }
     }
     let start_pose = ros.odom.expect("odometry arrived");
-    let mut reply: Value = match server.last_reply() {
-        Some(r) => serde_json::from_str(r)?,
-        None => {
-            let mut m = o.setup.clone();
-            m.insert("protocol".into(), "stopscan/1".into());
-            m.insert("seq".into(), 0.into());
-            m.insert("type".into(), "start".into());
-            m.insert("pose".into(), ros.odom());
-            serde_json::from_str(&server.handle(&Value::Object(m).to_string())?)?
-        }
+    let mut reply: Value = if let Some(r) = server.last_reply() {
+        serde_json::from_str(r)?
+    } else {
+        let mut m = o.setup.clone();
+        m.insert("protocol".into(), "stopscan/1".into());
+        m.insert("seq".into(), 0.into());
+        m.insert("type".into(), "start".into());
+        m.insert("pose".into(), ros.odom());
+        serde_json::from_str(&server.handle(&Value::Object(m).to_string())?)?
     };
     ros.say("started");
     loop {

@@ -55,7 +55,7 @@ pub fn run(o: &FakeRobotOptions) -> anyhow::Result<std::convert::Infallible> {
     let world = PolygonWorld::with_robot(env.domain, None, &footprint, Some(start))?;
     // The robot borrows the world for as long as the process runs.
     let world: &'static PolygonWorld = Box::leak(Box::new(world));
-    let start = world.reach().map_or(start, |r| r.start());
+    let start = world.reach().map_or(start, stopscan::world::polygon::Reach::start);
     let robot = Rc::new(RefCell::new(SimRobot::new(world, start, o.lidar, o.drift, o.seed)));
 
     let ctx = crate::context(o.domain, o.localhost)?;
@@ -90,7 +90,7 @@ pub fn run(o: &FakeRobotOptions) -> anyhow::Result<std::convert::Infallible> {
                 covariance: Covariance::default(),
             },
             twist: TwistWithCovariance {
-                twist: Default::default(),
+                twist: crate::msgs::Twist::default(),
                 covariance: Covariance::default(),
             },
         }

@@ -499,10 +499,10 @@ impl MissionRun {
             }
             if let Some((p, f)) = journal.as_mut() {
                 let line = StepLine { steps: file.mission.team.steps, trace_len: bytes.get() };
-                let mut text = serde_json::to_vec(&line).expect("a step line serialises");
-                text.push(b'\n');
+                let text =
+                    format!("{{\"steps\":{},\"trace_len\":{}}}\n", line.steps, line.trace_len);
                 // One write per line: a crash leaves it whole or torn at its end.
-                f.write_all(&text).map_err(|source| MissionRunError::WriteJournal {
+                f.write_all(text.as_bytes()).map_err(|source| MissionRunError::WriteJournal {
                     path: p.to_path_buf(),
                     source,
                 })?;

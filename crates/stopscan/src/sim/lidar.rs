@@ -230,6 +230,9 @@ impl<'a> SimRobot<'a> {
     /// odometry: the true motion differs from the commanded one by a random error that grows
     /// with the distance ([`HEADING_DRIFT`]); the true move is checked exactly against the
     /// space the footprint may move in ([`drive`]); odometry measures any shortfall.
+    ///
+    /// # Panics
+    /// Never: a drive's legs start where the robot stands.
     pub fn drive(&mut self, goal: Point) -> Drive {
         let odo = self.odometry;
         let d = (goal[0] - odo.x).hypot(goal[1] - odo.y);

@@ -405,6 +405,9 @@ pub struct Reply {
 
 impl Reply {
     /// The reply as one line of JSON (no newline).
+    ///
+    /// # Panics
+    /// Never: a reply holds only strings, finite numbers and maps with string keys.
     pub fn to_line(&self) -> String {
         serde_json::to_string(self).expect("replies serialise")
     }

@@ -131,6 +131,9 @@ impl Session {
     /// # Errors
     /// [`ProtocolError`] for a request out of order or with invalid contents; the session is
     /// unchanged.
+    ///
+    /// # Panics
+    /// Never: every request but `start` is refused before the session has started.
     pub fn step(
         &mut self,
         request: &Request,
