@@ -229,7 +229,8 @@ impl<'a> SimRobot<'a> {
     /// Drives toward `goal` (odometry frame) as a navigation stack would, on drifting
     /// odometry: the true motion differs from the commanded one by a random error that grows
     /// with the distance ([`HEADING_DRIFT`]); the true move is checked exactly against the
-    /// space the footprint may move in ([`drive`]); odometry measures any shortfall.
+    /// space the footprint may move in (straight, a short way round, or stopped where blocked;
+    /// see the module notes); odometry measures any shortfall.
     ///
     /// # Panics
     /// Never: a drive's legs start where the robot stands.

@@ -391,3 +391,77 @@ pub enum TransportError {
     #[error("connection: {0}")]
     Io(#[from] std::io::Error),
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn temp(name: &str) -> PathBuf {
+        let dir =
+            std::env::temp_dir().join(format!("stopscan-serve-{}-{name}", std::process::id()));
+        let _ = std::fs::remove_dir_all(&dir);
+        std::fs::create_dir_all(&dir).unwrap();
+        dir.join("journal.jsonl")
+    }
+
+    /// A corner session's requests: start, then arrivals and hidden scans.
+    fn requests() -> Vec<String> {
+        let pose = r#"{"x":0.0,"y":0.0,"theta":0.0}"#;
+        let mut out = vec![format!(
+            r#"{{"protocol":"stopscan/1","seq":0,"type":"start","family":"corner","strategy":"unirec","pose":{pose},"cost":{{"scan_time":2,"speed":0.5}},"corner":{{"distance":10}}}}"#
+        )];
+        for k in 0..4 {
+            out.push(format!(r#"{{"seq":{},"type":"arrived","pose":{pose}}}"#, 2 * k + 1));
+            out.push(format!(r#"{{"seq":{},"type":"scan","pose":{pose},"edge":null}}"#, 2 * k + 2));
+        }
+        out
+    }
+
+    #[test]
+    fn a_torn_last_line_is_cut_and_the_session_goes_on() {
+        let path = temp("torn");
+        let mut s = Server::with_journal(&path, ServeOptions::default()).unwrap();
+        let replies: Vec<String> = requests().iter().map(|r| s.handle(r).unwrap()).collect();
+        drop(s);
+        let whole = std::fs::read_to_string(&path).unwrap();
+        // Cut after step 5, in the middle of step 6's line.
+        let lines: Vec<&str> = whole.split_inclusive('\n').collect();
+        let cut = format!("{}{}", lines[..7].concat(), &lines[7][..10]);
+        std::fs::write(&path, cut).unwrap();
+        let mut r = Server::resume(&path, ServeOptions::default()).unwrap();
+        assert_eq!(r.steps(), 6);
+        assert_eq!(r.last_reply(), Some(replies[5].as_str()));
+        // A retry of an answered step gets its reply; the rest goes on as before.
+        assert_eq!(r.handle(&requests()[3]).unwrap(), replies[3]);
+        for (q, a) in requests().iter().zip(&replies).skip(6) {
+            assert_eq!(&r.handle(q).unwrap(), a);
+        }
+        drop(r);
+        assert_eq!(std::fs::read_to_string(&path).unwrap(), whole);
+    }
+
+    #[test]
+    fn a_damaged_journal_is_refused_naming_the_line() {
+        let path = temp("damaged");
+        let mut s = Server::with_journal(&path, ServeOptions::default()).unwrap();
+        for r in requests() {
+            s.handle(&r).unwrap();
+        }
+        drop(s);
+        let whole = std::fs::read_to_string(&path).unwrap();
+        let mut lines: Vec<String> = whole.lines().map(String::from).collect();
+        lines[3] = "{\"seq\": 2, \"request\": 7}".into();
+        std::fs::write(&path, lines.join("\n") + "\n").unwrap();
+        let e = Server::resume(&path, ServeOptions::default()).unwrap_err().to_string();
+        assert!(e.contains("line 4") && e.contains("not a journal step"), "{e}");
+        // A reply that no longer comes out the same.
+        let mut lines: Vec<String> = whole.lines().map(String::from).collect();
+        lines[2] = lines[2].replace("\"type\":\"scan\"}", "\"type\":\"scan\",\"extra\":1}");
+        std::fs::write(&path, lines.join("\n") + "\n").unwrap();
+        let e = Server::resume(&path, ServeOptions::default()).unwrap_err().to_string();
+        assert!(e.contains("line 3") && e.contains("different reply"), "{e}");
+        // A new journal never overwrites one.
+        let e = Server::with_journal(&path, ServeOptions::default()).unwrap_err().to_string();
+        assert!(e.contains("exists already"), "{e}");
+    }
+}
