@@ -260,10 +260,15 @@ fn the_same_session_over_tcp() {
         let mut reply = String::new();
         reader.read_line(&mut reply).unwrap();
         let reply: Value = serde_json::from_str(&reply).unwrap();
-        // Halfway, drop the connection and come back: the session goes on.
+        // Halfway, connect again while the old connection still looks open (a half-open
+        // socket after a lost link): the new one takes over and the session goes on.
         if !reconnected && reply["seq"] == 20 {
-            drop((reader, writer));
+            let old = (reader, writer);
             (reader, writer) = connect();
+            let mut stale = old.0;
+            let mut rest = String::new();
+            // The server shut the old connection down.
+            assert_eq!(stale.read_line(&mut rest).unwrap_or(0), 0, "{rest}");
             reconnected = true;
             // The last request again, on the new connection: the same reply, not a new step.
             writeln!(writer, "{line}").unwrap();
