@@ -21,6 +21,10 @@ use stopscan::world::polygon::PolygonWorld;
 
 use common::temp;
 
+#[path = "../../stopscan/tests/support/seen.rs"]
+mod seen;
+use seen::seen_share;
+
 /// A small generated office (two rows of three rooms) and its start.
 fn office() -> (PolygonWorld, Point) {
     let inst = stopscan::generate::office(2, 3, 4).unwrap();
@@ -113,37 +117,6 @@ fn run_session(
     }
 }
 
-/// The share of the free space (grid points every 0.25 m) within sight of some true scan
-/// position, by casting a ray to each point: written from the definition.
-fn seen_share(world: &PolygonWorld, stops: &[Point]) -> f64 {
-    use stopscan::geometry::Location;
-    let d = world.domain();
-    let walls = stopscan::world::lidar::Walls::of(d);
-    let [lo, hi] = stopscan::algorithm::cover::bounds_of(&d.rings()[0]);
-    let (mut inside, mut seen) = (0usize, 0usize);
-    let step = 0.25;
-    let mut y = lo[1] + 0.5 * step;
-    while y < hi[1] {
-        let mut x = lo[0] + 0.5 * step;
-        while x < hi[0] {
-            let p = [x, y];
-            if d.locate(p) == Location::Interior {
-                inside += 1;
-                seen += usize::from(stops.iter().any(|s| {
-                    let dist = (p[0] - s[0]).hypot(p[1] - s[1]);
-                    dist == 0.0
-                        || walls
-                            .cast(*s, [(p[0] - s[0]) / dist, (p[1] - s[1]) / dist], dist)
-                            .is_none()
-                }));
-            }
-            x += step;
-        }
-        y += step;
-    }
-    seen as f64 / inside as f64
-}
-
 #[test]
 fn a_simulated_robot_explores_an_office_over_standard_input() {
     let (world, start) = office();
@@ -161,7 +134,7 @@ fn a_simulated_robot_explores_an_office_over_standard_input() {
         let expect =
             30.0 * summary["scans"].as_f64().unwrap() + summary["distance"].as_f64().unwrap() / 0.5;
         assert!((summary["time"].as_f64().unwrap() - expect).abs() < 1e-6, "{summary}");
-        let share = seen_share(&world, &truth);
+        let share = seen_share(world.domain(), &truth, f64::INFINITY, 0.25);
         assert!(share > 0.97, "{strategy}: {share} of the free space seen");
         // The journal: a header, then one line per step, each request with its reply.
         let text = std::fs::read_to_string(&journal).unwrap();

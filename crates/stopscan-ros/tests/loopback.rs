@@ -8,6 +8,10 @@ use std::process::Command;
 
 use serde_json::Value;
 
+#[path = "../../stopscan/tests/support/seen.rs"]
+mod seen;
+use seen::seen_share;
+
 /// Whether this machine lets the test make a network namespace.
 fn can_unshare() -> bool {
     Command::new("unshare")
@@ -72,7 +76,7 @@ fn an_office_is_explored_through_dds_on_loopback() {
     // it: the share of grid points in sight of some scan pose, by ray casting.
     let stops = scan_poses(&journal);
     assert_eq!(stops.len() as u64, scans);
-    let share = seen_share(&inst.domain, &stops);
+    let share = seen_share(&inst.domain, &stops, f64::INFINITY, 0.25);
     assert!(share > 0.95, "{share} of the office seen from the scans placed");
 }
 
@@ -88,33 +92,4 @@ fn scan_poses(journal: &Path) -> Vec<[f64; 2]> {
             Some([p["x"].as_f64()?, p["y"].as_f64()?])
         })
         .collect()
-}
-
-/// The share of the free space (grid points every 0.25 m) in sight of some stop.
-fn seen_share(d: &stopscan::geometry::Domain, stops: &[[f64; 2]]) -> f64 {
-    use stopscan::geometry::Location;
-    let walls = stopscan::world::lidar::Walls::of(d);
-    let [lo, hi] = stopscan::algorithm::cover::bounds_of(&d.rings()[0]);
-    let (mut inside, mut seen) = (0usize, 0usize);
-    let step = 0.25;
-    let mut y = lo[1] + 0.5 * step;
-    while y < hi[1] {
-        let mut x = lo[0] + 0.5 * step;
-        while x < hi[0] {
-            let p = [x, y];
-            if d.locate(p) == Location::Interior {
-                inside += 1;
-                seen += usize::from(stops.iter().any(|s| {
-                    let dist = (p[0] - s[0]).hypot(p[1] - s[1]);
-                    dist == 0.0
-                        || walls
-                            .cast(*s, [(p[0] - s[0]) / dist, (p[1] - s[1]) / dist], dist)
-                            .is_none()
-                }));
-            }
-            x += step;
-        }
-        y += step;
-    }
-    seen as f64 / inside as f64
 }

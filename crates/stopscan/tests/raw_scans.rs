@@ -2,14 +2,17 @@
 //! and drifting odometry, measured on the ground truth; the record's numbers checked against
 //! an independent brute force.
 
-use stopscan::geometry::Location;
 use stopscan::io::Environment;
 use stopscan::kernel::Point;
 use stopscan::pipeline::explore::{ExploreOptions, explore};
 use stopscan::protocol::CostModel;
 use stopscan::protocol::laser::Pose;
 use stopscan::protocol::polygon::Footprint;
-use stopscan::world::lidar::{Lidar, Walls};
+use stopscan::world::lidar::Lidar;
+
+#[path = "support/seen.rs"]
+mod seen;
+use seen::seen_share;
 
 fn office(seed: u64) -> Environment {
     let inst = stopscan::generate::office(2, 3, seed).unwrap();
@@ -34,38 +37,6 @@ fn options(strategy: &str, seed: u64) -> ExploreOptions {
         },
         ..ExploreOptions::default()
     }
-}
-
-/// The share of grid points (every `step` metres) of the free space within the lidar's range
-/// of some stop and in its sight, by casting a ray to each: written from the definition, with
-/// no visibility region.
-fn seen_share(env: &Environment, stops: &[Point], range: f64, step: f64) -> f64 {
-    let d = &env.domain;
-    let walls = Walls::of(d);
-    let [lo, hi] = stopscan::algorithm::cover::bounds_of(&d.rings()[0]);
-    let (mut inside, mut seen) = (0usize, 0usize);
-    let mut y = lo[1] + 0.5 * step;
-    while y < hi[1] {
-        let mut x = lo[0] + 0.5 * step;
-        while x < hi[0] {
-            let p = [x, y];
-            if d.locate(p) == Location::Interior {
-                inside += 1;
-                let visible = stops.iter().any(|s| {
-                    let dist = (p[0] - s[0]).hypot(p[1] - s[1]);
-                    dist <= range
-                        && (dist == 0.0
-                            || walls
-                                .cast(*s, [(p[0] - s[0]) / dist, (p[1] - s[1]) / dist], dist)
-                                .is_none())
-                });
-                seen += usize::from(visible);
-            }
-            x += step;
-        }
-        y += step;
-    }
-    seen as f64 / inside as f64
 }
 
 #[test]
@@ -93,7 +64,7 @@ fn every_strategy_explores_an_office_from_raw_scans_and_the_record_is_true() {
         assert_eq!(at, truth, "{name}");
         // The coverage printed is the share of the free space seen from those stops, by a
         // brute force over a 10 cm grid (within the grid's resolution).
-        let brute = seen_share(&env, &truth, 20.0, 0.1);
+        let brute = seen_share(&env.domain, &truth, 20.0, 0.1);
         assert!(
             (brute - r.metrics.coverage).abs() < 0.01,
             "{name}: record {} brute {brute}",

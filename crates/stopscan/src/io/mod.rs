@@ -6,12 +6,14 @@
 //! - [`bench_format`]: the visibility benchmark format;
 //! - [`grid`]: region-of-interest files (text grid, mask, polygon);
 //! - [`atomic`]: writing files whole or not at all, and the output-target checks;
+//! - [`journal`]: append-only journals of JSON lines, cut back past a torn last line;
 //! - [`sweep`]: the environment files of a sweep folder;
 //! - here: [`read_environment`] by file extension, [`Environment`], [`LoadError`].
 
 pub mod atomic;
 pub mod bench_format;
 pub mod grid;
+pub mod journal;
 pub mod ros_map;
 pub mod sweep;
 pub mod text_formats;

@@ -104,6 +104,22 @@ pub fn planning_margin(sigma: f64) -> f64 {
     0.05 + sigma
 }
 
+/// The robot as strategies plan with it on raw scans from a sensor with range noise `sigma`:
+/// its clearance grown by [`planning_margin`] (a disc), and a window part closed where another
+/// scan saw a wall along it within that margin ([`Sensor::wall_tolerance`]).
+///
+/// # Panics
+/// Never: the clearance and the margin are finite and not negative.
+pub fn raw_scan_planning(setup: &RobotSetup, sigma: f64) -> RobotSetup {
+    let margin = planning_margin(sigma);
+    RobotSetup {
+        cost: setup.cost,
+        footprint: Footprint::disc(setup.footprint.clearance() + margin)
+            .expect("a finite clearance and margin"),
+        sensor: Sensor { wall_tolerance: margin, ..setup.sensor },
+    }
+}
+
 /// The default of the window rule's `min_window`: a window narrower than the robot, or no
 /// longer than two cells of the occupancy map it was traced from (a pixel step of a wall
 /// with its rounding), is not worth a trip. 0 for a point robot on a polygon input: every
@@ -153,23 +169,15 @@ impl ExploreOptions {
         }
     }
 
-    /// On raw scans ([`ExploreOptions::lidar`]): the robot as strategies plan with it (its
-    /// clearance grown by [`planning_margin`]) and the simulated robot's setup (gaps on a wall
-    /// line shorter than the window rule's minimum, and at least 0.4 m, are read as wall);
-    /// else the robot as it is.
-    ///
-    /// # Panics
-    /// Never: the clearance and the margin are finite and not negative.
+    /// On raw scans ([`ExploreOptions::lidar`]): the robot as strategies plan with it
+    /// ([`raw_scan_planning`]) and the simulated robot's setup (gaps on a wall line shorter
+    /// than the window rule's minimum, and at least 0.4 m, are read as wall); else the robot
+    /// as it is.
     pub fn raw_scan_setup(&self, setup: &RobotSetup) -> (RobotSetup, Option<LidarSetup>) {
         let Some(l) = self.lidar else { return (setup.clone(), None) };
-        let plan = RobotSetup {
-            footprint: Footprint::disc(setup.footprint.clearance() + planning_margin(l.sigma))
-                .expect("a finite clearance and margin"),
-            ..setup.clone()
-        };
         let mut s = LidarSetup::new(l, self.odometry_drift, self.seed);
-        s.ingest.bridge = setup.sensor.min_window.max(s.ingest.bridge);
-        (plan, Some(s))
+        s.ingest = s.ingest.bridging(setup.sensor.min_window);
+        (raw_scan_planning(setup, l.sigma), Some(s))
     }
 
     /// The sensor's range: the lidar's with raw scans, else [`ExploreOptions::range`].

@@ -23,6 +23,7 @@ use super::Progress;
 use crate::io::LoadError;
 use crate::io::atomic::{self, WriteError};
 use crate::io::grid::GridOptions;
+use crate::io::journal::{self, Journal};
 use crate::protocol::CostModel;
 use crate::protocol::grid::Cell;
 use crate::run_record::GridRunRecord;
@@ -262,10 +263,13 @@ impl MissionState {
     /// column), [`MissionRunError::Format`], or [`MissionRunError::Journal`] for a step line
     /// that does not parse.
     pub fn read(path: &Path) -> Result<Self, MissionRunError> {
-        let text = std::fs::read_to_string(path)
-            .map_err(|source| MissionRunError::ReadState { path: path.to_path_buf(), source })?;
-        let mut lines = text.split_inclusive('\n');
-        let first = lines.next().unwrap_or_default();
+        let cannot = |source| MissionRunError::ReadState { path: path.to_path_buf(), source };
+        let (mut lines, _) = journal::read(path).map_err(cannot)?;
+        if lines.is_empty() {
+            // A `/2` state file is one line with no newline after it.
+            lines.push(std::fs::read_to_string(path).map_err(cannot)?);
+        }
+        let first = &lines[0];
         let mut m: Self = serde_json::from_str(first)
             .map_err(|source| MissionRunError::NotAState { path: path.to_path_buf(), source })?;
         // A `/2` state is a `/3` journal's first line with no step after it.
@@ -273,14 +277,11 @@ impl MissionState {
             return Err(MissionRunError::Format { path: path.to_path_buf(), found: m.format });
         }
         m.format = MISSION_FORMAT.into();
-        for (i, line) in lines.enumerate() {
-            if !line.ends_with('\n') {
-                break;
-            }
+        for (i, line) in lines.iter().enumerate().skip(1) {
             let step: StepLine =
                 serde_json::from_str(line).map_err(|e| MissionRunError::Journal {
                     path: path.to_path_buf(),
-                    line: i + 2,
+                    line: i + 1,
                     problem: e.to_string(),
                 })?;
             m.journaled_steps = step.steps;
@@ -479,8 +480,7 @@ impl MissionRun {
                 file.write(p)?;
                 let cannot =
                     |source| MissionRunError::WriteJournal { path: p.to_path_buf(), source };
-                let f = std::fs::OpenOptions::new().append(true).open(p).map_err(cannot)?;
-                Some((p, f))
+                Some(Journal::append_to(p, false).map_err(cannot)?)
             }
             None => None,
         };
@@ -497,13 +497,11 @@ impl MissionRun {
                 let path = file.trace.clone().unwrap_or_else(|| PathBuf::from("trace"));
                 return Err(MissionRunError::Trace { path, source });
             }
-            if let Some((p, f)) = journal.as_mut() {
+            if let Some(j) = journal.as_mut() {
                 let line = StepLine { steps: file.mission.team.steps, trace_len: bytes.get() };
-                let text =
-                    format!("{{\"steps\":{},\"trace_len\":{}}}\n", line.steps, line.trace_len);
-                // One write per line: a crash leaves it whole or torn at its end.
-                f.write_all(text.as_bytes()).map_err(|source| MissionRunError::WriteJournal {
-                    path: p.to_path_buf(),
+                let text = format!("{{\"steps\":{},\"trace_len\":{}}}", line.steps, line.trace_len);
+                j.append(&text).map_err(|source| MissionRunError::WriteJournal {
+                    path: j.path().to_path_buf(),
                     source,
                 })?;
             }
@@ -642,6 +640,11 @@ mod tests {
             e.ends_with("format \"stopscan-mission/1\", expected \"stopscan-mission/3\""),
             "{e}"
         );
+        // A `/2` state file (one line, no newline) still resumes.
+        run.state.format = "stopscan-mission/2".into();
+        std::fs::write(&path, serde_json::to_string(&run.state).unwrap()).unwrap();
+        let old = MissionState::read(&path).unwrap();
+        assert_eq!((old.format.as_str(), old.mission.team.steps), (MISSION_FORMAT, 1));
         std::fs::write(&path, "{\"format\": 3").unwrap();
         let e = MissionState::read(&path).unwrap_err().to_string();
         assert!(e.contains(":1:") && e.contains("not a mission state"), "{e}");

@@ -67,6 +67,13 @@ impl IngestParams {
             bridge: 0.4,
         }
     }
+
+    /// These parameters with gaps on a wall line up to `min_window` (the shortest window worth
+    /// a trip) read as wall too: no door the robot would drive to hides in a shorter one.
+    #[must_use]
+    pub fn bridging(self, min_window: f64) -> Self {
+        Self { bridge: self.bridge.max(min_window), ..self }
+    }
 }
 
 impl Default for IngestParams {

@@ -23,10 +23,11 @@ pub mod client;
 pub mod message;
 mod session;
 
-use std::fs::{File, OpenOptions};
 use std::hash::{DefaultHasher, Hash, Hasher};
-use std::io::{BufRead, BufReader, Read, Seek, SeekFrom, Write};
+use std::io::{BufRead, Read, Write};
 use std::path::{Path, PathBuf};
+
+use crate::io::journal::{self, Journal};
 
 pub use message::{
     DoneReason, MAX_LINE, PROTOCOL, ProtocolError, Reply, ReplyBody, Request, parse,
@@ -90,36 +91,6 @@ struct Entry {
     reply: serde_json::Value,
 }
 
-/// The journal file, open for appending.
-#[derive(Debug)]
-struct Journal {
-    path: PathBuf,
-    file: File,
-    fsync: bool,
-    /// Time spent writing, for `bench serve`.
-    spent: std::time::Duration,
-}
-
-impl Journal {
-    fn io(&self, source: std::io::Error) -> ServeError {
-        ServeError::Io { path: self.path.clone(), source }
-    }
-
-    fn append(&mut self, line: &str) -> Result<(), ServeError> {
-        let t = std::time::Instant::now();
-        let mut bytes = Vec::with_capacity(line.len() + 1);
-        bytes.extend_from_slice(line.as_bytes());
-        bytes.push(b'\n');
-        // One write: a crash leaves the line whole or torn at its end, never interleaved.
-        self.file.write_all(&bytes).map_err(|e| self.io(e))?;
-        if self.fsync {
-            self.file.sync_data().map_err(|e| self.io(e))?;
-        }
-        self.spent += t.elapsed();
-        Ok(())
-    }
-}
-
 /// A session with its journal: one request line in, one reply line out.
 #[derive(Debug)]
 pub struct Server {
@@ -151,19 +122,13 @@ impl Server {
         if std::fs::metadata(path).is_ok_and(|m| m.len() > 0) {
             return Err(ServeError::Exists(path.to_path_buf()));
         }
-        let file = OpenOptions::new().create(true).append(true).open(path).map_err(io)?;
-        let mut journal = Journal {
-            path: path.to_path_buf(),
-            file,
-            fsync: options.fsync,
-            spent: std::time::Duration::ZERO,
-        };
+        let mut journal = Journal::append_to(path, options.fsync).map_err(io)?;
         let header = serde_json::json!({
             "format": JOURNAL_FORMAT,
             "protocol": PROTOCOL,
             "stopscan_version": env!("CARGO_PKG_VERSION"),
         });
-        journal.append(&header.to_string())?;
+        journal.append(&header.to_string()).map_err(io)?;
         Ok(Self { journal: Some(journal), ..Self::new(options) })
     }
 
@@ -181,27 +146,18 @@ impl Server {
             line,
             problem,
         };
-        let mut file = OpenOptions::new().read(true).append(true).open(path).map_err(io)?;
-        let mut reader = BufReader::new(&mut file);
+        let (lines, whole) = journal::read(path).map_err(io)?;
+        let Some(first) = lines.first() else {
+            return Err(bad(1, "empty: no journal header".into()));
+        };
+        let header: serde_json::Value = serde_json::from_str(first)
+            .map_err(|e| bad(1, format!("not a journal header: {e}")))?;
+        if header["format"] != JOURNAL_FORMAT {
+            return Err(bad(1, format!("not a {JOURNAL_FORMAT} journal")));
+        }
         let mut server = Self::new(options);
-        let mut whole = 0u64;
-        let mut buf = String::new();
-        for number in 1.. {
-            buf.clear();
-            let n = reader.read_line(&mut buf).map_err(io)?;
-            if n == 0 || !buf.ends_with('\n') {
-                break;
-            }
-            whole += n as u64;
-            let line = buf.trim_end_matches('\n');
-            if number == 1 {
-                let header: serde_json::Value = serde_json::from_str(line)
-                    .map_err(|e| bad(1, format!("not a journal header: {e}")))?;
-                if header["format"] != JOURNAL_FORMAT {
-                    return Err(bad(1, format!("not a {JOURNAL_FORMAT} journal")));
-                }
-                continue;
-            }
+        for (i, line) in lines.iter().enumerate().skip(1) {
+            let number = i + 1;
             let entry: Entry = serde_json::from_str(line)
                 .map_err(|e| bad(number, format!("not a journal step: {e}")))?;
             let (replayed, step) = server.step_line(&entry.request.to_string());
@@ -225,19 +181,7 @@ impl Server {
                 ));
             }
         }
-        if whole == 0 {
-            return Err(bad(1, "empty: no journal header".into()));
-        }
-        drop(reader);
-        // Cut a torn last line.
-        file.set_len(whole).map_err(io)?;
-        file.seek(SeekFrom::End(0)).map_err(io)?;
-        server.journal = Some(Journal {
-            path: path.to_path_buf(),
-            file,
-            fsync: options.fsync,
-            spent: std::time::Duration::ZERO,
-        });
+        server.journal = Some(journal::reopen(path, whole, options.fsync).map_err(io)?);
         Ok(server)
     }
 
@@ -253,7 +197,7 @@ impl Server {
 
     /// Seconds spent writing the journal so far.
     pub fn journal_seconds(&self) -> f64 {
-        self.journal.as_ref().map_or(0.0, |j| j.spent.as_secs_f64())
+        self.journal.as_ref().map_or(0.0, |j| j.spent().as_secs_f64())
     }
 
     /// Steps answered so far (the next `seq`).
@@ -270,7 +214,9 @@ impl Server {
     pub fn handle(&mut self, line: &str) -> Result<String, ServeError> {
         let (reply, entry) = self.step_line(line);
         if let (Some(entry), Some(journal)) = (entry, &mut self.journal) {
-            journal.append(&entry)?;
+            journal
+                .append(&entry)
+                .map_err(|source| ServeError::Io { path: journal.path().to_path_buf(), source })?;
         }
         Ok(reply)
     }

@@ -7,11 +7,12 @@ use super::message::{
     StartIn, Summary,
 };
 use crate::kernel::{Num, Point};
-use crate::pipeline::explore::{DEFAULT_POCKET_CAP, default_min_pocket, planning_margin};
+use crate::pipeline::explore::{DEFAULT_POCKET_CAP, default_min_pocket, raw_scan_planning};
 use crate::protocol::corner::{AngleDistribution, CornerObservation, CornerSetup, Stop};
-use crate::protocol::laser::Pose;
+use crate::protocol::laser::{InvalidScan, Pose};
 use crate::protocol::polygon::{Footprint, RobotSetup, Sensor};
 use crate::protocol::{Action, CostModel, Feedback, RunTotals, Tally};
+use crate::sensing::ingest::IngestError;
 use crate::sensing::mapper::{Mapper, MapperParams};
 use crate::sim::lidar::HEADING_DRIFT;
 use crate::strategy::corner::registry::{self, BuildOptions};
@@ -94,10 +95,6 @@ struct PolygonRun {
     odometry: Odometry,
     /// The map frame from the odometry frame.
     correction: Pose,
-    /// Where the scans were placed, map frame.
-    scans: Vec<Point>,
-    /// The last feedback was a failed move.
-    failing: bool,
 }
 
 struct CornerRun {
@@ -304,7 +301,6 @@ impl Run {
         match self {
             Self::Polygon(r) => {
                 r.odometry.moved(pose);
-                r.failing = false;
                 r.strategy.act(&Feedback::Arrived)
             }
             Self::Corner(r) => {
@@ -323,7 +319,6 @@ impl Run {
         match self {
             Self::Polygon(r) => {
                 r.odometry.moved(f.pose);
-                r.failing = true;
                 let at = r.map_pose(f.pose).at();
                 Some(r.strategy.act(&Feedback::MoveFailed { at, reason: f.reason }))
             }
@@ -414,11 +409,8 @@ impl PolygonRun {
             Some(w) => non_negative("sensor.min_window", w)?,
             None => footprint.width(),
         };
-        let margin = planning_margin(sigma);
-        let setup = RobotSetup {
+        let robot = RobotSetup {
             cost,
-            footprint: Footprint::disc(footprint.clearance() + margin)
-                .expect("a finite clearance and margin"),
             sensor: Sensor {
                 range,
                 beams: sensor.beams,
@@ -426,9 +418,11 @@ impl PolygonRun {
                 min_window,
                 min_pocket: default_min_pocket(&footprint, None),
                 pocket_cap: DEFAULT_POCKET_CAP,
-                wall_tolerance: margin,
+                wall_tolerance: 0.0,
             },
+            footprint,
         };
+        let setup = raw_scan_planning(&robot, sigma);
         let strategy = polygon::build_for(name, &setup)
             .map_err(|e| ProtocolError::field("strategy", e.to_string()))?;
         if name == "range_limited" && range.is_none() {
@@ -438,15 +432,13 @@ impl PolygonRun {
             ));
         }
         let mut params = MapperParams::for_sensor(sigma, drift, HEADING_DRIFT * drift);
-        params.ingest.bridge = min_window.max(params.ingest.bridge);
+        params.ingest = params.ingest.bridging(min_window);
         Ok(Self {
             strategy,
             cost,
             mapper: Mapper::new(params),
             odometry: Odometry::new(s.pose),
             correction: Pose::default(),
-            scans: Vec::new(),
-            failing: false,
         })
     }
 
@@ -465,26 +457,22 @@ impl PolygonRun {
                 "missing: the polygon family reads laser scans",
             ));
         };
-        // Check before changing anything: a refused scan leaves the session as it was.
-        scan.validate().map_err(|e| match e {
-            crate::protocol::laser::InvalidScan::Field { field, problem } => {
-                ProtocolError::field(format!("scan.{field}"), problem)
-            }
-        })?;
         let guess = self.map_pose(s.pose);
         let mut odometry = self.odometry;
         odometry.moved(s.pose);
-        let reading = self
-            .mapper
-            .read(scan, &guess, odometry.since_scan)
-            .map_err(|e| ProtocolError::field("scan", e.to_string()))?;
+        // The mapper checks the scan before it changes anything, and the session changes only
+        // after it: a refused scan leaves the session as it was.
+        let reading = self.mapper.read(scan, &guess, odometry.since_scan).map_err(|e| match e {
+            IngestError::Scan(InvalidScan::Field { field, problem }) => {
+                ProtocolError::field(format!("scan.{field}"), problem)
+            }
+            other => ProtocolError::field("scan", other.to_string()),
+        })?;
         self.odometry = odometry;
         self.odometry.since_scan = 0.0;
         self.odometry.tally.scans += 1;
         let estimate = reading.estimate;
         self.correction = estimate.compose(&s.pose.inverse());
-        self.scans.push(estimate.at());
-        self.failing = false;
         let action = self.strategy.act(&Feedback::Scanned(reading.observation));
         let localised = Localised {
             pose: estimate,

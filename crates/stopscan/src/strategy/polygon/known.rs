@@ -148,7 +148,7 @@ pub(super) struct Known {
     pending: Option<Target>,
     /// The trip being driven.
     #[serde(default)]
-    pub(super) trip: Trip,
+    trip: Trip,
     /// The view the robot stands at when it plans (the last scan's).
     #[serde(default)]
     here: usize,
