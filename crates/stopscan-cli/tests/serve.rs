@@ -14,8 +14,11 @@ use rand_chacha::ChaCha8Rng;
 use serde_json::{Value, json};
 use stopscan::kernel::Point;
 use stopscan::pipeline::serve::client::SimClient;
+use stopscan::protocol::CostModel;
 use stopscan::protocol::polygon::Footprint;
+use stopscan::sim::Recording;
 use stopscan::sim::lidar::SimRobot;
+use stopscan::world::grid::{Drift, GridRoi, GridSensor, GridWorld};
 use stopscan::world::lidar::Lidar;
 use stopscan::world::polygon::PolygonWorld;
 
@@ -286,12 +289,7 @@ fn malformed_messages_get_errors_that_name_the_field() {
         (json!({"seq": 0, "type": "arrived", "pose": {"x": 0, "y": 0, "theta": 0}}).to_string(), Some("type"), "expected \"start\""),
         (json!({"seq": 3, "type": "arrived", "pose": {"x": 0, "y": 0, "theta": 0}}).to_string(), Some("seq"), "expected 0"),
     ];
-    for (line, field, needle) in &cases {
-        let reply = server.ask(line).expect("the server answers");
-        assert_eq!(reply["type"], "error", "{line}: {reply}");
-        assert_eq!(reply["field"].as_str(), *field, "{line}: {reply}");
-        assert!(reply["message"].as_str().unwrap().contains(needle), "{line}: {reply}");
-    }
+    expect_errors(&mut server, &cases);
     // Now the start, then out-of-order and malformed scans.
     let reply = server.ask(&start.to_string()).unwrap();
     assert_eq!(reply["type"], "scan", "{reply}");
@@ -306,18 +304,15 @@ fn malformed_messages_get_errors_that_name_the_field() {
     let cases: Vec<(String, &str, &str)> = vec![
         (json!({"seq": 1, "type": "arrived", "pose": {"x": 0, "y": 0, "theta": 0}}).to_string(), "type", "expected \"scan\""),
         (json!({"seq": 1, "type": "scan", "pose": {"x": 0, "y": 0, "theta": 0}}).to_string(), "scan", "missing"),
+        (json!({"seq": 1, "type": "scan", "robot": 1, "pose": {"x": 0, "y": 0, "theta": 0}}).to_string(), "robot", "roi family"),
+        (json!({"seq": 1, "type": "scan", "time": 1.0, "pose": {"x": 0, "y": 0, "theta": 0}}).to_string(), "time", "roi family"),
         (scan(json!([1.0, "x", 2.0]), json!({})), "scan.ranges", "range 1 is"),
         (scan(json!([1.0, 1.0, 1.0]), json!({"angle_increment": 0.0})), "scan.angle_increment", "zero"),
         (scan(json!([1.0, 1.0, 1.0]), json!({"range_max": 0.01})), "scan.range_max", ""),
         (scan(json!(vec![Value::Null; 360]), json!({})), "scan", "valid"),
         (json!({"seq": 0, "type": "start", "protocol": "stopscan/1", "pose": {"x": 1, "y": 0, "theta": 0}}).to_string(), "seq", "different request"),
     ];
-    for (line, field, needle) in &cases {
-        let reply = server.ask(line).expect("the server answers");
-        assert_eq!(reply["type"], "error", "{line}: {reply}");
-        assert_eq!(reply["field"].as_str(), Some(*field), "{line}: {reply}");
-        assert!(reply["message"].as_str().unwrap().contains(needle), "{line}: {reply}");
-    }
+    expect_errors(&mut server, &cases);
     // The start sent again is answered again, the same way.
     assert_eq!(server.ask(&start.to_string()).unwrap(), reply);
     // A clear scan of an empty disc: explored at once.
@@ -377,4 +372,360 @@ fn a_corner_search_ends_when_the_robot_finds_the_target() {
     assert_eq!(done["summary"]["strategy"], "unirec");
     server.finish();
     check_schema(&[journal]);
+}
+
+/// A region of `n` cells grown at random from `[0, 0]` (4-connected, with the holes and
+/// cycles growth leaves).
+fn blob(n: usize, seed: u64) -> Vec<[i32; 2]> {
+    let mut rng = ChaCha8Rng::seed_from_u64(seed);
+    let mut cells = vec![[0, 0]];
+    while cells.len() < n {
+        let c = cells[rng.random_range(0..cells.len())];
+        let d = [[-1, 0], [0, 1], [1, 0], [0, -1]][rng.random_range(0..4)];
+        let next = [c[0] + d[0], c[1] + d[1]];
+        if !cells.contains(&next) {
+            cells.push(next);
+        }
+    }
+    cells.sort_unstable();
+    cells
+}
+
+/// How a team is flown in [`ground_station`].
+struct Flight {
+    robots: usize,
+    cell_size: f64,
+    speed: f64,
+    scan_time: f64,
+    /// The region's speed and heading (degrees).
+    drift: (f64, f64),
+    start: [f64; 3],
+    /// Each leg and scan takes up to this share longer, at random.
+    jitter: f64,
+    /// The chance that a goal fails (the robot stays over the cell it left).
+    fail: f64,
+    seed: u64,
+}
+
+/// What a team's session did, as the ground station saw it.
+struct Flown {
+    done: Value,
+    visited: std::collections::BTreeSet<[i32; 2]>,
+    scans: u64,
+    ends: Vec<[i32; 2]>,
+    last_time: f64,
+}
+
+/// Checks a goal order for a robot over `from` that leaves at `t`, and returns its arrival
+/// time: the leg in the region's frame flown at `speed` against the drift, and the goal the
+/// cell's centre moved by the drift until then, in the odometry frame of the start pose.
+fn goal_eta(o: &Value, f: &Flight, from: [i32; 2], t: f64) -> f64 {
+    let (h, vp) = (f.drift.1.to_radians(), f.drift.0);
+    let cell = [o["cell"][0].as_i64().unwrap() as i32, o["cell"][1].as_i64().unwrap() as i32];
+    let dx = f64::from(cell[1] - from[1]) * f.cell_size;
+    let dy = -f64::from(cell[0] - from[0]) * f.cell_size;
+    let len = dx.hypot(dy);
+    let a = vp * (h.cos() * dx + h.sin() * dy) / len;
+    let rel = -a + (a * a + f.speed * f.speed - vp * vp).sqrt();
+    let eta = t + len / rel;
+    assert!((o["eta"].as_f64().unwrap() - eta).abs() < 1e-6 * eta.max(1.0), "{o}");
+    let (x, y) = (
+        f64::from(cell[1]) * f.cell_size + vp * eta * h.cos(),
+        -f64::from(cell[0]) * f.cell_size + vp * eta * h.sin(),
+    );
+    let (s, c) = f.start[2].sin_cos();
+    let g = &o["goal"];
+    assert!((g["x"].as_f64().unwrap() - (f.start[0] + c * x - s * y)).abs() < 1e-6, "{o}");
+    assert!((g["y"].as_f64().unwrap() - (f.start[1] + s * x + c * y)).abs() < 1e-6, "{o}");
+    eta
+}
+
+/// Sends each line and checks that the reply is an error naming `field` (`None`: no field)
+/// with `needle` in its message.
+fn expect_errors<'a, F: Into<Option<&'a str>> + Copy>(
+    server: &mut Server,
+    cases: &[(String, F, &str)],
+) {
+    for (line, field, needle) in cases {
+        let reply = server.ask(line).expect("the server answers");
+        assert_eq!(reply["type"], "error", "{line}: {reply}");
+        assert_eq!(reply["field"].as_str(), (*field).into(), "{line}: {reply}");
+        assert!(reply["message"].as_str().unwrap().contains(needle), "{line}: {reply}");
+    }
+}
+
+/// A ground station written from docs/protocol.md alone: it passes each robot its orders and
+/// reports for them in the order their orders finish on its own clock. The robots fly straight
+/// at `speed` relative to the drifting region (so a leg of `d` metres takes the time the
+/// drift allows), and a scan reports the truth of the cell and its neighbours.
+fn ground_station(region: &[[i32; 2]], f: &Flight, server: &mut Server) -> Flown {
+    let truth: std::collections::HashSet<[i32; 2]> = region.iter().copied().collect();
+    let mut rng = ChaCha8Rng::seed_from_u64(f.seed);
+    let n = f.robots;
+    let start = json!({"protocol": "stopscan/1", "seq": 0, "type": "start", "family": "roi",
+        "pose": {"x": f.start[0], "y": f.start[1], "theta": f.start[2]},
+        "cost": {"scan_time": f.scan_time, "speed": f.speed},
+        "roi": {"robots": n, "cell_size": f.cell_size,
+                "drift": {"speed": f.drift.0, "heading_deg": f.drift.1}}});
+    // Per robot: its cell, its order out (kind, target cell, when it finishes).
+    let mut at = vec![[0, 0]; n];
+    let mut out: Vec<Option<(String, [i32; 2], f64)>> = vec![None; n];
+    let mut clock = vec![0.0f64; n];
+    let mut ends = vec![[i32::MAX, i32::MAX]; n];
+    let mut visited: std::collections::BTreeSet<[i32; 2]> = [[0, 0]].into();
+    let (mut scans, mut seq, mut last_time) = (0u64, 0u64, 0.0f64);
+    let mut reply = server.ask(&start.to_string()).expect("the server answers");
+    loop {
+        if reply["type"] == "done" {
+            // Done for the whole team: every robot ends where it stands.
+            for (e, a) in ends.iter_mut().zip(&at) {
+                if e[0] == i32::MAX {
+                    *e = *a;
+                }
+            }
+            return Flown { done: reply, visited, scans, ends, last_time };
+        }
+        assert_eq!(reply["type"], "orders", "{reply}");
+        for o in reply["orders"].as_array().unwrap() {
+            let i = o["robot"].as_u64().unwrap() as usize;
+            let cell =
+                [o["cell"][0].as_i64().unwrap() as i32, o["cell"][1].as_i64().unwrap() as i32];
+            let kind = o["type"].as_str().unwrap().to_string();
+            let stretch = 1.0 + f.jitter * rng.random::<f64>();
+            // Robots sent off together leave together, when the last of them has reported:
+            // the report just answered, the latest so far (reports go in time order).
+            let t = clock[i].max(last_time);
+            let finish = match kind.as_str() {
+                "scan" => {
+                    assert_eq!(cell, at[i], "a scan where the robot stands");
+                    t + f.scan_time * stretch
+                }
+                "goal" => t + (goal_eta(o, f, at[i], t) - t) * stretch,
+                "done" => {
+                    ends[i] = at[i];
+                    continue;
+                }
+                other => panic!("unknown order {other}"),
+            };
+            assert!(out[i].is_none(), "robot {i} got a second order while one is out");
+            out[i] = Some((kind, cell, finish));
+        }
+        // The next report: the order that finishes first (the lowest robot among equals).
+        let i = (0..n)
+            .filter(|&i| out[i].is_some())
+            .min_by(|&a, &b| {
+                let (ta, tb) = (out[a].as_ref().unwrap().2, out[b].as_ref().unwrap().2);
+                ta.total_cmp(&tb).then(a.cmp(&b))
+            })
+            .expect("a team that is not done has an order out");
+        let (kind, cell, finish) = out[i].take().unwrap();
+        clock[i] = finish;
+        last_time = last_time.max(finish);
+        seq += 1;
+        let pose = json!({"x": 0.0, "y": 0.0, "theta": 0.0});
+        let request = match kind.as_str() {
+            "scan" => {
+                scans += 1;
+                let is = |c: [i32; 2]| truth.contains(&c);
+                let [r, k] = at[i];
+                let frame = json!({"centre": is([r, k]),
+                    "sides": [is([r - 1, k]), is([r, k + 1]), is([r + 1, k]), is([r, k - 1])]});
+                json!({"seq": seq, "type": "scan", "robot": i, "time": finish, "pose": pose,
+                    "frames": [frame]})
+            }
+            _ if rng.random::<f64>() < f.fail => json!({"seq": seq, "type": "move_failed",
+                "robot": i, "time": finish, "pose": pose, "reason": "blocked"}),
+            _ => {
+                at[i] = cell;
+                visited.insert(cell);
+                json!({"seq": seq, "type": "arrived", "robot": i, "time": finish, "pose": pose})
+            }
+        };
+        reply = server.ask(&request.to_string()).expect("the server answers");
+    }
+}
+
+#[test]
+fn a_team_maps_a_drifting_region_through_one_ground_station() {
+    let dir = temp("serve-team");
+    std::fs::create_dir_all(&dir).unwrap();
+    let region = blob(70, 3);
+    let mut journals = Vec::new();
+    for (k, (robots, jitter, drift)) in
+        [(1, 0.0, (0.0, 0.0)), (3, 0.0, (0.3, 30.0)), (4, 0.5, (0.3, 30.0)), (5, 0.8, (0.0, 0.0))]
+            .into_iter()
+            .enumerate()
+    {
+        let journal = dir.join(format!("team-{k}.jsonl"));
+        let mut server = Server::spawn(&["--journal", journal.to_str().unwrap()]);
+        let flight = Flight {
+            robots,
+            cell_size: 2.0,
+            speed: 1.0,
+            scan_time: 3.0,
+            drift,
+            start: [5.0, -3.0, 0.4],
+            jitter,
+            fail: 0.0,
+            seed: k as u64,
+        };
+        let flown = ground_station(&region, &flight, &mut server);
+        server.finish();
+        let done = &flown.done;
+        let case = format!("{robots} robots, jitter {jitter}, drift {drift:?}");
+        assert_eq!(done["reason"], "explored", "{case}: {done}");
+        // Algorithm 1 stands on every cell of a connected region, and the team comes home.
+        let all: std::collections::BTreeSet<[i32; 2]> = region.iter().copied().collect();
+        assert!(flown.visited.is_superset(&all), "{case}: cells never visited");
+        assert!(flown.ends.iter().all(|&e| e == [0, 0]), "{case}: {:?}", flown.ends);
+        let team = &done["summary"]["team"];
+        assert_eq!(team["robots"], robots);
+        assert_eq!(team["cells_visited"].as_u64().unwrap() as usize, flown.visited.len());
+        // An exact camera: the map is the region.
+        let map: Vec<[i32; 2]> = serde_json::from_value(team["map"].clone()).unwrap();
+        assert_eq!(map, region, "{case}");
+        assert_eq!(done["summary"]["scans"].as_u64().unwrap(), flown.scans, "{case}");
+        let time = done["summary"]["time"].as_f64().unwrap();
+        assert!((time - flown.last_time).abs() < 1e-9, "{case}: {time} vs {}", flown.last_time);
+        if jitter == 0.0 {
+            // Robots that fly exactly as the time model says do what the simulator's do.
+            let roi = GridRoi::new("blob", region.iter().copied(), [0, 0], 2.0).unwrap();
+            let drift = Drift { speed: drift.0, heading_deg: drift.1 };
+            let mut world = GridWorld::new(roi, drift, GridSensor::Ideal, 1);
+            let cost = CostModel::new(3.0, 0.0, 1.0).unwrap();
+            let sim =
+                stopscan::sim::grid::explore(&mut world, robots, cost, Recording::NONE).unwrap();
+            assert_eq!(sim.team.tally().scans, flown.scans, "{case}");
+            assert!((sim.team.makespan() - time).abs() < 1e-6, "{case}: {time}");
+        }
+        journals.push(journal);
+    }
+    // Goals that fail: the child is dropped, a way back up is flown again, and the team
+    // still ends, at home, with a map of region cells only.
+    for seed in 0..4 {
+        let mut server = Server::spawn(&[]);
+        let flight = Flight {
+            robots: 3,
+            cell_size: 1.0,
+            speed: 2.0,
+            scan_time: 1.0,
+            drift: (0.0, 0.0),
+            start: [0.0, 0.0, 0.0],
+            jitter: 0.3,
+            fail: 0.15,
+            seed,
+        };
+        let flown = ground_station(&region, &flight, &mut server);
+        server.finish();
+        let done = &flown.done;
+        let reason = done["reason"].as_str().unwrap();
+        assert!(reason == "explored" || reason == "stuck", "seed {seed}: {done}");
+        let map: Vec<[i32; 2]> =
+            serde_json::from_value(done["summary"]["team"]["map"].clone()).unwrap();
+        assert!(map.iter().all(|c| region.contains(c)), "seed {seed}");
+        if reason == "explored" {
+            assert!(flown.ends.iter().all(|&e| e == [0, 0]), "seed {seed}: {:?}", flown.ends);
+        }
+    }
+    check_schema(&journals);
+}
+
+#[test]
+fn a_team_session_refuses_what_it_cannot_take() {
+    let mut server = Server::spawn(&[]);
+    let pose = json!({"x": 0.0, "y": 0.0, "theta": 0.0});
+    let start = |extra: Value| {
+        let mut m = json!({"protocol": "stopscan/1", "seq": 0, "type": "start", "family": "roi",
+            "pose": pose, "cost": {"scan_time": 2.0, "speed": 1.0}});
+        for (k, v) in extra.as_object().unwrap() {
+            m[k] = v.clone();
+        }
+        m.to_string()
+    };
+    let cases: Vec<(String, &str, &str)> = vec![
+        (start(json!({})), "roi", "missing"),
+        (start(json!({"roi": {"robots": 0}})), "roi.robots", "1 to 1024"),
+        (start(json!({"roi": {"robots": 2, "cell_size": 0}})), "roi.cell_size", "above 0"),
+        (start(json!({"roi": {"robots": 2, "drift": {"speed": 1.5}}})), "cost.speed", "faster"),
+        (
+            start(json!({"roi": {"robots": 2, "drift": {"sped": 0.5}}})),
+            "roi.drift.sped",
+            "unknown field",
+        ),
+        (
+            start(json!({"roi": {"robots": 2, "search": {"min": [3, 0], "max": [0, 5]}}})),
+            "roi.search",
+            "min",
+        ),
+        (start(json!({"roi": {"robots": 2}, "robot": {"radius": 0.2}})), "robot", "polygon family"),
+        (
+            start(json!({"roi": {"robots": 2}, "strategy": "depth_first"})),
+            "strategy",
+            "recursive_dfs",
+        ),
+        (start(json!({"family": "polygon", "roi": {"robots": 2}})), "roi", "roi family"),
+    ];
+    expect_errors(&mut server, &cases);
+    let first = server
+        .ask(&start(json!({"roi": {"robots": 2, "drift": {"speed": 0.2, "heading_deg": 90}}})))
+        .unwrap();
+    assert_eq!(first["type"], "orders", "{first}");
+    let orders = first["orders"].as_array().unwrap();
+    assert_eq!(orders.len(), 2, "{first}");
+    assert!(orders.iter().all(|o| o["type"] == "scan" && o["cell"] == json!([0, 0])), "{first}");
+    let frame = json!({"centre": true, "sides": [false, true, false, false]});
+    let scan = |seq: u64, extra: Value| {
+        let mut m = json!({"seq": seq, "type": "scan", "pose": pose});
+        for (k, v) in extra.as_object().unwrap() {
+            m[k] = v.clone();
+        }
+        m.to_string()
+    };
+    let cases: Vec<(String, &str, &str)> = vec![
+        (
+            json!({"seq": 1, "type": "arrived", "robot": 0, "time": 1.0, "pose": pose}).to_string(),
+            "type",
+            "robot 0: expected \"scan\"",
+        ),
+        (scan(1, json!({"frames": [frame]})), "robot", "missing"),
+        (scan(1, json!({"robot": 5, "time": 1.0, "frames": [frame]})), "robot", "robots 0 to 1"),
+        (scan(1, json!({"robot": 0, "frames": [frame]})), "time", "drifting"),
+        (scan(1, json!({"robot": 0, "time": -1.0, "frames": [frame]})), "time", ">= 0"),
+        (scan(1, json!({"robot": 0, "time": 2.0})), "frames", "missing"),
+        (scan(1, json!({"robot": 0, "time": 2.0, "frames": []})), "frames", "1 to 99"),
+        (
+            scan(
+                1,
+                json!({"robot": 0, "time": 2.0, "frames": [{"centre": true, "sides": [true]}]}),
+            ),
+            "frames[0].sides",
+            "",
+        ),
+        (
+            scan(1, json!({"robot": 0, "time": 2.0, "frames": [frame], "edge": 0.3})),
+            "edge",
+            "corner family",
+        ),
+    ];
+    expect_errors(&mut server, &cases);
+    // Robot 0's scan: it waits for robot 1, scanning with it.
+    let wait = server.ask(&scan(1, json!({"robot": 0, "time": 2.0, "frames": [frame]}))).unwrap();
+    assert_eq!(wait, json!({"protocol": "stopscan/1", "seq": 1, "type": "orders", "orders": []}));
+    let again = server.ask(&scan(2, json!({"robot": 0, "time": 2.5, "frames": [frame]}))).unwrap();
+    assert!(again["message"].as_str().unwrap().contains("waits"), "{again}");
+    let back = server.ask(&scan(2, json!({"robot": 1, "time": 1.0, "frames": [frame]}))).unwrap();
+    assert_eq!(back["type"], "orders", "{back}");
+    // Both go east together, the only neighbour seen; robot 1 says the drift moved it.
+    let orders = back["orders"].as_array().unwrap();
+    assert_eq!(orders.len(), 2, "{back}");
+    for o in orders {
+        assert_eq!(o["type"], "goal", "{back}");
+        assert_eq!(o["cell"], json!([0, 1]), "{back}");
+    }
+    let stop = server
+        .ask(&json!({"seq": 3, "type": "stop", "robot": 1, "time": 3.0, "pose": pose}).to_string())
+        .unwrap();
+    assert_eq!(stop["reason"], "stopped", "{stop}");
+    assert_eq!(stop["summary"]["team"]["map"], json!([[0, 0], [0, 1]]), "{stop}");
+    server.finish();
 }

@@ -94,6 +94,7 @@ pub type CellSet = HashSet<Cell, BuildHasherDefault<CellHasher>>;
 /// What one camera frame says: whether the cell below and each neighbour (in [`SIDES`]
 /// order) belong to the region.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
 pub struct Frame {
     /// The cell below.
     pub centre: bool,

@@ -4,7 +4,7 @@
 
 use serde::{Deserialize, Serialize};
 
-use super::{Agent, Arena, Flow, Leg, NoObserver, Observer, Recording, SimError, Team};
+use super::{Agent, Arena, Flow, Leg, Meeting, NoObserver, Observer, Recording, SimError, Team};
 use crate::kernel::tolerance::SAME_VALUE_REL;
 use crate::protocol::grid::{
     Cell, CellMap, GridContext, GridObservation, Marks, Record, SIDES, sorted_map,
@@ -13,16 +13,43 @@ use crate::protocol::{Action, CostModel};
 use crate::strategy::grid::{
     ALGORITHM_1, Battery, GridFeedback, GridStrategy, LawnMower, MissionRobot,
 };
-use crate::world::grid::GridWorld;
+use crate::world::grid::{Blackboard, GridWorld};
 
 /// A grid world as the loop sees it: moves priced by the drift, scans by its sensor, the
 /// records on the cells as the robots' only medium besides meeting.
-impl Arena for GridWorld {
+impl Meeting for GridWorld {
     type Place = Cell;
     type Observation = GridObservation;
     type Context = GridContext;
     type Note = Record;
 
+    fn meet(&mut self, at: &Cell, _clock: f64, group: &[usize]) -> GridContext {
+        self.arrive(*at, group)
+    }
+
+    fn leave(&mut self, at: &Cell, note: Record) {
+        self.write(*at, note);
+    }
+}
+
+/// A board of records with nobody's world behind it: the meeting place of robots that report
+/// over a protocol (the server learns the region only from their scans).
+impl Meeting for Blackboard {
+    type Place = Cell;
+    type Observation = GridObservation;
+    type Context = GridContext;
+    type Note = Record;
+
+    fn meet(&mut self, at: &Cell, _clock: f64, group: &[usize]) -> GridContext {
+        self.context(*at, group)
+    }
+
+    fn leave(&mut self, at: &Cell, note: Record) {
+        self.write(*at, note);
+    }
+}
+
+impl Arena for GridWorld {
     fn travel(&self, from: &Cell, to: &Cell, _clock: f64, cost: &CostModel) -> Option<Leg> {
         let step = [to[0] - from[0], to[1] - from[1]];
         let seconds = match SIDES.iter().position(|&d| d == step) {
@@ -36,17 +63,13 @@ impl Arena for GridWorld {
     fn scan(&mut self, robot: usize, at: &Cell, clock: f64) -> Option<GridObservation> {
         Some(GridObservation { cell: *at, frames: self.sense(robot, *at, clock) })
     }
-
-    fn meet(&mut self, at: &Cell, _clock: f64, group: &[usize]) -> GridContext {
-        self.arrive(*at, group)
-    }
-
-    fn leave(&mut self, at: &Cell, note: Record) {
-        self.write(*at, note);
-    }
 }
 
-impl<S: GridStrategy> Agent<GridWorld> for S {
+impl<
+    S: GridStrategy,
+    W: Meeting<Place = Cell, Observation = GridObservation, Context = GridContext, Note = Record>,
+> Agent<W> for S
+{
     fn name(&self) -> &str {
         GridStrategy::name(self)
     }
@@ -75,6 +98,19 @@ pub struct MissionPlan {
     pub search: Option<Search>,
     /// Whether to build the map from every scan's vote ([`Marks`]: conservative marking).
     pub map: bool,
+}
+
+impl MissionPlan {
+    /// The strategy of robot `i` (its index in the team) flying under `times`: Algorithm 1,
+    /// inside the plan's search (if any), inside its battery (if any).
+    pub fn robot(&self, i: usize, times: crate::protocol::grid::TimeModel) -> MissionRobot {
+        let dfs = (ALGORITHM_1.build)(i);
+        let searched = match self.search {
+            Some(s) => LawnMower::sweep(dfs, s.min, s.max),
+            None => LawnMower::none(dfs),
+        };
+        Battery::new(searched, self.battery_s, times, self.cost.scan_time, self.cost.move_time)
+    }
 }
 
 /// The field experiment's search: launch cell and box.
@@ -205,22 +241,7 @@ impl Mission {
         }
         let times = world.time_model(&plan.cost);
         let start = plan.search.map_or(world.roi().start(), |s| s.launch);
-        let robots = (0..plan.robots)
-            .map(|i| {
-                let dfs = (ALGORITHM_1.build)(i);
-                let searched = match plan.search {
-                    Some(s) => LawnMower::sweep(dfs, s.min, s.max),
-                    None => LawnMower::none(dfs),
-                };
-                Battery::new(
-                    searched,
-                    plan.battery_s,
-                    times,
-                    plan.cost.scan_time,
-                    plan.cost.move_time,
-                )
-            })
-            .collect();
+        let robots = (0..plan.robots).map(|i| plan.robot(i, times)).collect();
         Ok(Self {
             team: Team::new(vec![start; plan.robots], recording),
             plan,

@@ -14,7 +14,10 @@ pub mod lidar;
 pub mod polygon;
 mod team;
 
-pub use team::{Agent, Arena, Flow, Leg, Recording, SimError, Spot, Team, Track};
+pub use team::{
+    Agent, Arena, Flow, Leg, Meeting, MeetingFeedback, Recording, SimError, Spot, Team, Track,
+    confer,
+};
 
 use std::ops::ControlFlow;
 

@@ -2,7 +2,7 @@
 
 use serde::{Deserialize, Serialize};
 
-use super::{Agent, Arena, Flow, Leg, Observer, SimError, Team};
+use super::{Agent, Arena, Flow, Leg, Meeting, Observer, SimError, Team};
 use crate::kernel::Point;
 use crate::protocol::polygon::PolygonObservation;
 use crate::protocol::{Action, CostModel, Tally, TimeBreakdown};
@@ -70,12 +70,17 @@ impl Observer<Point, PolygonObservation> for Reframe<'_> {
 /// A polygon world as the loop sees it: straight moves checked exactly, no communication.
 struct PolygonArena<'a>(&'a PolygonWorld);
 
-impl Arena for PolygonArena<'_> {
+impl Meeting for PolygonArena<'_> {
     type Place = Point;
     type Observation = PolygonObservation;
     type Context = ();
     type Note = ();
 
+    fn meet(&mut self, _at: &Point, _clock: f64, _group: &[usize]) {}
+    fn leave(&mut self, _at: &Point, (): ()) {}
+}
+
+impl Arena for PolygonArena<'_> {
     fn travel(&self, from: &Point, to: &Point, _clock: f64, cost: &CostModel) -> Option<Leg> {
         self.0.can_move(*from, *to).then(|| {
             let metres = (to[0] - from[0]).hypot(to[1] - from[1]);
@@ -85,8 +90,6 @@ impl Arena for PolygonArena<'_> {
     fn scan(&mut self, _robot: usize, at: &Point, _clock: f64) -> Option<PolygonObservation> {
         self.0.scan(*at).ok()
     }
-    fn meet(&mut self, _at: &Point, _clock: f64, _group: &[usize]) {}
-    fn leave(&mut self, _at: &Point, (): ()) {}
     fn is_static(&self) -> bool {
         true
     }

@@ -24,8 +24,10 @@ pub struct Leg {
     pub seconds: f64,
 }
 
-/// What the loop needs from a world: moves, scans, and where robots meet.
-pub trait Arena {
+/// Where robots meet: what they learn there from one another (or from what was left there
+/// before) and what they leave. The simulator's worlds are meeting places; so is a server's
+/// board of records, for robots that report over a protocol.
+pub trait Meeting {
     /// A place a robot can stand on.
     type Place: Clone + PartialEq + Debug;
     /// What a scan returns.
@@ -36,6 +38,14 @@ pub trait Arena {
     /// loop passes each distinct note once).
     type Note: PartialEq + Clone;
 
+    /// Robots `group` (indices, ascending) stand together at `at` at time `clock`.
+    fn meet(&mut self, at: &Self::Place, clock: f64, group: &[usize]) -> Self::Context;
+    /// A robot leaves `note` at `at`.
+    fn leave(&mut self, at: &Self::Place, note: Self::Note);
+}
+
+/// What the loop needs from a world: moves and scans, besides where robots meet.
+pub trait Arena: Meeting {
     /// Checks a straight move that begins at time `clock` and prices it, or refuses it.
     fn travel(
         &self,
@@ -46,10 +56,6 @@ pub trait Arena {
     ) -> Option<Leg>;
     /// The sensor of robot `robot` at `at`, or `None` if it cannot scan there.
     fn scan(&mut self, robot: usize, at: &Self::Place, clock: f64) -> Option<Self::Observation>;
-    /// Robots `group` (indices, ascending) stand together at `at` at time `clock`.
-    fn meet(&mut self, at: &Self::Place, clock: f64, group: &[usize]) -> Self::Context;
-    /// A robot leaves `note` at `at`.
-    fn leave(&mut self, at: &Self::Place, note: Self::Note);
     /// Whether a scan at a place always sees the same (a static world with an exact sensor):
     /// then a second scan where any scan already stood sees nothing new, and the loop ends
     /// the run as [`SimError::NoProgress`] instead of letting a strategy repeat itself.
@@ -58,25 +64,73 @@ pub trait Arena {
     }
 }
 
+/// The feedback a robot of a meeting gets, by its index.
+pub type MeetingFeedback<W> = Feedback<<W as Meeting>::Place, <W as Meeting>::Observation>;
+
 /// A strategy as the loop drives it.
-pub trait Agent<W: Arena + ?Sized> {
+pub trait Agent<W: Meeting + ?Sized> {
     /// The registry name.
     fn name(&self) -> &str;
     /// The next action, given the feedback of the last one and what the robot learns here.
-    fn act(
-        &mut self,
-        feedback: &Feedback<W::Place, W::Observation>,
-        context: &W::Context,
-    ) -> Action<W::Place>;
+    fn act(&mut self, feedback: &MeetingFeedback<W>, context: &W::Context) -> Action<W::Place>;
     /// What the robot leaves where it stands after acting (nothing by default).
     fn note(&mut self) -> Option<&W::Note> {
         None
     }
     /// What the robot tells the robots it meets as it arrives, before anyone acts (nothing by
     /// default): news from where it comes from.
-    fn report(&mut self, _feedback: &Feedback<W::Place, W::Observation>) -> Option<W::Note> {
+    fn report(&mut self, _feedback: &MeetingFeedback<W>) -> Option<W::Note> {
         None
     }
+}
+
+/// One meeting: robots `group` (indices into `agents`, ascending) stand together at `at` at
+/// time `clock`. Each tells the others its news (left at the place), they learn what the place
+/// holds, each decides its next action in index order, and each leaves its note. Returns the
+/// actions in the order of `group`.
+///
+/// The simulator's loop holds every meeting through here, and so does a server whose robots
+/// report over a protocol: both make the same decisions from the same feedback.
+pub fn confer<'f, W, A>(
+    world: &mut W,
+    agents: &mut [A],
+    feedback: impl Fn(usize) -> &'f MeetingFeedback<W>,
+    at: &W::Place,
+    clock: f64,
+    group: &[usize],
+) -> Vec<Action<W::Place>>
+where
+    W: Meeting + ?Sized,
+    W::Place: 'f,
+    W::Observation: 'f,
+    A: Agent<W>,
+{
+    let mut notes: Vec<W::Note> = Vec::new();
+    for &i in group {
+        if let Some(n) = agents[i].report(feedback(i))
+            && notes.last() != Some(&n)
+        {
+            notes.push(n);
+        }
+    }
+    for n in notes.drain(..) {
+        world.leave(at, n);
+    }
+    let context = world.meet(at, clock, group);
+    let mut actions = Vec::with_capacity(group.len());
+    for &i in group {
+        let agent = &mut agents[i];
+        actions.push(agent.act(feedback(i), &context));
+        if let Some(n) = agent.note()
+            && notes.last() != Some(n)
+        {
+            notes.push(n.clone());
+        }
+    }
+    for n in notes {
+        world.leave(at, n);
+    }
+    actions
 }
 
 /// Why a run was cut short.
@@ -398,29 +452,13 @@ impl<P: Clone + PartialEq + Debug + Spot, O: Clone> Team<P, O> {
         let group = std::mem::take(&mut self.group);
         self.steps += 1;
         let (clock, at) = (self.robots[group[0]].clock, self.robots[group[0]].at.clone());
-        let mut notes: Vec<W::Note> = Vec::new();
-        for &i in &group {
-            if let Some(n) = agents[i].report(&self.robots[i].feedback)
-                && notes.last() != Some(&n)
-            {
-                notes.push(n);
-            }
-        }
-        for n in notes.drain(..) {
-            world.leave(&at, n);
-        }
-        let context = world.meet(&at, clock, &group);
+        let robots = &self.robots;
+        let actions = confer(world, agents, |i| &robots[i].feedback, &at, clock, &group);
         let mut stop = false;
         // Robots of a group often fly the same leg: price it once.
         let mut last_leg: Option<(P, Leg)> = None;
-        for &i in &group {
-            let agent = &mut agents[i];
-            let action = agent.act(&self.robots[i].feedback, &context);
-            if let Some(n) = agent.note()
-                && notes.last() != Some(n)
-            {
-                notes.push(n.clone());
-            }
+        for (&i, action) in group.iter().zip(actions) {
+            let agent = &agents[i];
             let r = &mut self.robots[i];
             match action {
                 Action::MoveTo { to } => {
@@ -473,9 +511,6 @@ impl<P: Clone + PartialEq + Debug + Spot, O: Clone> Team<P, O> {
                 }
                 Action::Done => r.done = true,
             }
-        }
-        for n in notes {
-            world.leave(&at, n);
         }
         for &i in &group {
             (self.clocks[i], self.spots[i]) = Self::key_of(&self.robots[i]);

@@ -7,8 +7,9 @@ use serde::{Deserialize, Serialize};
 use serde_json::Value;
 
 use crate::protocol::corner::{LastStep, Route, Stop};
+use crate::protocol::grid::{Cell, Frame};
 use crate::protocol::laser::{LaserScan, Pose};
-use crate::protocol::{MoveFailure, RunTotals};
+use crate::protocol::{MoveFailure, RunTotals, Tally};
 use crate::sensing::icp::Alignment;
 use crate::sensing::ingest::Cleaning;
 use crate::strategy::corner::ExprecReading;
@@ -48,6 +49,9 @@ pub enum Family {
     Polygon,
     /// Looking around a corner for a target behind it (the corner strategies).
     Corner,
+    /// A team of robots mapping a region of interest cell by cell (Algorithm 1 of the ROI
+    /// paper), on a grid that may drift.
+    Roi,
 }
 
 /// The cost model of a session, as sent.
@@ -120,6 +124,47 @@ pub struct CornerIn {
     pub mdp_step_degrees: Option<f64>,
 }
 
+/// The region's drift, as sent.
+#[derive(Debug, Clone, Copy, PartialEq, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct DriftIn {
+    /// S_p, metres per second.
+    pub speed: f64,
+    /// Degrees counter-clockwise from the grid's +x axis (the start pose's heading).
+    #[serde(default)]
+    pub heading_deg: f64,
+}
+
+/// A lawn-mowing search box, in cells relative to the start cell.
+#[derive(Debug, Clone, Copy, PartialEq, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct SearchIn {
+    /// The box's smallest row and column.
+    pub min: Cell,
+    /// Its largest row and column.
+    pub max: Cell,
+}
+
+/// The ROI team's set-up.
+#[derive(Debug, Clone, PartialEq, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct RoiIn {
+    /// How many robots (1 to [`MAX_TEAM`]).
+    pub robots: usize,
+    /// The side of a cell, metres (1 if absent).
+    #[serde(default)]
+    pub cell_size: Option<f64>,
+    /// How the region moves (static if absent).
+    #[serde(default)]
+    pub drift: Option<DriftIn>,
+    /// A lawn-mowing search first, when the team does not start over the region.
+    #[serde(default)]
+    pub search: Option<SearchIn>,
+}
+
+/// The largest team a session drives.
+pub const MAX_TEAM: usize = 1024;
+
 /// `start`: the session's set-up and where the robot stands.
 #[derive(Debug, Clone, PartialEq, Deserialize)]
 #[serde(deny_unknown_fields)]
@@ -147,6 +192,9 @@ pub struct StartIn {
     /// The corner search's set-up (corner).
     #[serde(default)]
     pub corner: Option<CornerIn>,
+    /// The team's set-up (roi).
+    #[serde(default)]
+    pub roi: Option<RoiIn>,
 }
 
 /// `scan`: a scan and where odometry says it was taken.
@@ -162,6 +210,15 @@ pub struct ScanIn {
     /// `null` or absent while it is hidden.
     #[serde(default)]
     pub edge: Option<f64>,
+    /// The roi family's reading: the camera frames taken over the cell.
+    #[serde(default)]
+    pub frames: Option<Vec<Frame>>,
+    /// Which robot of a team (roi).
+    #[serde(default)]
+    pub robot: Option<usize>,
+    /// The team's clock, seconds since the start (roi).
+    #[serde(default)]
+    pub time: Option<f64>,
 }
 
 /// `arrived`, `found` or `stop`: where the robot stands.
@@ -170,6 +227,12 @@ pub struct ScanIn {
 pub struct PoseIn {
     /// The pose, in the robot's odometry frame.
     pub pose: Pose,
+    /// Which robot of a team (roi).
+    #[serde(default)]
+    pub robot: Option<usize>,
+    /// The team's clock, seconds since the start (roi).
+    #[serde(default)]
+    pub time: Option<f64>,
 }
 
 /// `move_failed`: where the robot stopped and why.
@@ -180,6 +243,12 @@ pub struct FailedIn {
     pub pose: Pose,
     /// Why.
     pub reason: MoveFailure,
+    /// Which robot of a team (roi).
+    #[serde(default)]
+    pub robot: Option<usize>,
+    /// The team's clock, seconds since the start (roi).
+    #[serde(default)]
+    pub time: Option<f64>,
 }
 
 /// A request, by its `type`.
@@ -200,6 +269,16 @@ pub enum Request {
 }
 
 impl Request {
+    /// The robot and the clock a team's request names (`robot`, `time`), and its pose.
+    pub fn team_fields(&self) -> Option<(Option<usize>, Option<f64>, Pose)> {
+        match self {
+            Self::Start(_) => None,
+            Self::Arrived(p) | Self::Found(p) | Self::Stop(p) => Some((p.robot, p.time, p.pose)),
+            Self::MoveFailed(f) => Some((f.robot, f.time, f.pose)),
+            Self::Scan(s) => Some((s.robot, s.time, s.pose)),
+        }
+    }
+
     /// The request's `type`.
     pub fn kind(&self) -> &'static str {
         match self {
@@ -329,12 +408,56 @@ pub enum ReplyBody {
         /// What was done.
         summary: Summary,
     },
+    /// What each robot of a team does next (roi): orders for the robots whose turn it is,
+    /// none while the robot that reported waits for the others sent with it.
+    Orders {
+        /// The orders, by robot.
+        orders: Vec<Order>,
+    },
     /// The request was refused; the session is unchanged.
     Error {
         /// The field at fault (absent for a line that is not a JSON object).
         field: Option<String>,
         /// What is wrong.
         message: String,
+    },
+}
+
+/// An order to one robot of a team.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct Order {
+    /// The robot.
+    pub robot: usize,
+    /// What it does.
+    #[serde(flatten)]
+    pub what: OrderKind,
+}
+
+/// What one robot of a team is told to do.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+#[serde(tag = "type", rename_all = "snake_case")]
+pub enum OrderKind {
+    /// Take a scan over the cell it stands on.
+    Scan {
+        /// The cell.
+        cell: Cell,
+    },
+    /// Fly to a cell.
+    Goal {
+        /// The cell, `[row, col]` (rows grow against the grid's +y).
+        cell: Cell,
+        /// Where the cell's centre will be on arrival, in the odometry frame.
+        goal: Pose,
+        /// The cell's centre in the region's own frame (cell `[0, 0]` at the start pose).
+        map_goal: Pose,
+        /// When it arrives, seconds on the team's clock, as the time model predicts (the
+        /// time `goal` is computed for).
+        eta: f64,
+    },
+    /// Nothing more: it is home (or gave up).
+    Done {
+        /// The cell it ends on.
+        cell: Cell,
     },
 }
 
@@ -358,6 +481,8 @@ pub enum DoneReason {
     /// A corner search's move failed: the circle around the corner is blocked, and the
     /// search has no other way to go.
     Blocked,
+    /// A team's search box was swept without seeing the region (roi).
+    NotFound,
 }
 
 /// What a session did.
@@ -371,6 +496,23 @@ pub struct Summary {
     /// Windows closed without a visit, and why (polygon).
     #[serde(skip_serializing_if = "Option::is_none")]
     pub windows: Option<Skipped>,
+    /// What the team mapped (roi).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub team: Option<TeamSummary>,
+}
+
+/// What a team did and mapped.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct TeamSummary {
+    /// The robots.
+    pub robots: usize,
+    /// Scans, moves and distance (by odometry) of each robot.
+    pub per_robot: Vec<Tally>,
+    /// Cells some robot stood on (arrived at, or started on).
+    pub cells_visited: usize,
+    /// The map: every cell some scan's vote marked as part of the region, sorted (a cell once
+    /// marked stays marked).
+    pub map: Vec<Cell>,
 }
 
 /// How a scan was placed: sent with the reply to every polygon `scan`.

@@ -4,7 +4,9 @@
 //! The robot sends its start, its scans with the poses odometry gave, its arrivals and its
 //! failed moves; stopscan answers each with the next goal, a scan request, done, or an
 //! error naming the field at fault. Every request carries a sequence number `seq`, counted
-//! from 0 by the robot; the reply echoes it.
+//! from 0 by the robot; the reply echoes it. A session runs one polygon robot, one corner
+//! search, or a whole ROI team (`roi`: one connection reports for every robot, by index,
+//! and gets every robot's orders back).
 //!
 //! **Resumable.** With a journal, every answered step is appended to it (the request and the
 //! reply, one JSON line) and written to the operating system before the reply is sent. After
@@ -21,6 +23,7 @@
 pub mod bench;
 pub mod client;
 pub mod message;
+mod roi;
 mod session;
 
 use std::hash::{DefaultHasher, Hash, Hasher};

@@ -3,9 +3,10 @@
 //! with an error that leaves it unchanged.
 
 use super::message::{
-    CornerIn, DoneReason, FailedIn, Family, Localised, ProtocolError, ReplyBody, Request, ScanIn,
-    StartIn, Summary,
+    CornerIn, DoneReason, FailedIn, Family, Localised, Order, ProtocolError, ReplyBody, Request,
+    ScanIn, StartIn, Summary,
 };
+use super::roi::{Outcome, RoiRun};
 use crate::kernel::{Num, Point};
 use crate::pipeline::explore::{DEFAULT_POCKET_CAP, default_min_pocket, raw_scan_planning};
 use crate::protocol::corner::{AngleDistribution, CornerObservation, CornerSetup, Stop};
@@ -39,6 +40,8 @@ enum Expect {
     Scan,
     /// `arrived` or `move_failed` (after a goal).
     Move,
+    /// A report from any robot of the team that has an order out.
+    Team,
     /// Nothing: the session is over.
     Over(DoneReason),
 }
@@ -50,9 +53,24 @@ pub struct Session {
     run: Option<Run>,
 }
 
+/// A session's run: one robot, or a team.
 enum Run {
+    One(One),
+    Team(Box<RoiRun>),
+}
+
+/// One robot's run.
+enum One {
     Polygon(Box<PolygonRun>),
     Corner(Box<CornerRun>),
+}
+
+/// What a session does first.
+enum Begin {
+    /// One robot's action.
+    Action(Action<Point>),
+    /// A team's orders.
+    Orders(Vec<Order>),
 }
 
 impl std::fmt::Debug for Session {
@@ -63,21 +81,21 @@ impl std::fmt::Debug for Session {
 
 /// The odometry bookkeeping every family shares: the pose last reported and the tally.
 #[derive(Debug, Clone, Copy)]
-struct Odometry {
+pub(super) struct Odometry {
     last: Pose,
-    tally: Tally,
+    pub(super) tally: Tally,
     /// Metres driven since the last scan.
     since_scan: f64,
 }
 
 impl Odometry {
-    fn new(start: Pose) -> Self {
+    pub(super) fn new(start: Pose) -> Self {
         Self { last: start, tally: Tally::default(), since_scan: 0.0 }
     }
 
     /// The robot reports `pose` after a move: the metres since the last report join the
     /// tally (a move that went nowhere is not counted).
-    fn moved(&mut self, pose: Pose) {
+    pub(super) fn moved(&mut self, pose: Pose) {
         let d = (pose.x - self.last.x).hypot(pose.y - self.last.y);
         if d > 0.0 {
             self.tally.moves += 1;
@@ -141,6 +159,9 @@ impl Session {
                 format!("expected {expected}, got {:?}", request.kind()),
             ))
         };
+        if matches!(self.run, Some(Run::One(_))) && !matches!(self.expect, Expect::Over(_)) {
+            single(request)?;
+        }
         match (self.expect, request) {
             (Expect::Over(reason), _) => Err(ProtocolError::field(
                 "type",
@@ -150,9 +171,12 @@ impl Session {
                 ),
             )),
             (Expect::Start, Request::Start(s)) => {
-                let (run, action) = Run::start(s)?;
+                let (run, begin) = Run::start(s)?;
                 self.run = Some(run);
-                Ok((self.answer(action, false), None))
+                match begin {
+                    Begin::Action(action) => Ok((self.answer(action, false), None)),
+                    Begin::Orders(orders) => Ok((self.orders(Outcome::Orders(orders)), None)),
+                }
             }
             (Expect::Start, _) => out_of_order("\"start\""),
             (_, Request::Start(_)) => Err(ProtocolError::field(
@@ -160,9 +184,13 @@ impl Session {
                 "the session has started already; one server runs one session",
             )),
             (_, Request::Found(p) | Request::Stop(p)) => {
-                check_pose("pose", &p.pose)?;
-                let run = self.run.as_mut().expect("started");
-                run.odometry().moved(p.pose);
+                match self.run.as_mut().expect("started") {
+                    Run::Team(team) => team.ending(request)?,
+                    Run::One(run) => {
+                        check_pose("pose", &p.pose)?;
+                        run.odometry().moved(p.pose);
+                    }
+                }
                 let reason = if matches!(request, Request::Found(_)) {
                     DoneReason::Found
                 } else {
@@ -170,15 +198,18 @@ impl Session {
                 };
                 Ok((self.finish(reason), None))
             }
+            (Expect::Team, _) => {
+                let outcome = self.team().report(request)?;
+                Ok((self.orders(outcome), None))
+            }
             (Expect::Move, Request::Arrived(p)) => {
                 check_pose("pose", &p.pose)?;
-                let action = self.run.as_mut().expect("started").arrived(p.pose);
+                let action = self.one().arrived(p.pose);
                 Ok((self.answer(action, false), None))
             }
             (Expect::Move, Request::MoveFailed(f)) => {
                 check_pose("pose", &f.pose)?;
-                let run = self.run.as_mut().expect("started");
-                match run.failed(f) {
+                match self.one().failed(f) {
                     Some(action) => Ok((self.answer(action, true), None)),
                     None => Ok((self.finish(DoneReason::Blocked), None)),
                 }
@@ -186,8 +217,7 @@ impl Session {
             (Expect::Move, _) => out_of_order("\"arrived\" or \"move_failed\" (a goal is out)"),
             (Expect::Scan, Request::Scan(s)) => {
                 check_pose("pose", &s.pose)?;
-                let run = self.run.as_mut().expect("started");
-                let (action, localised) = run.scanned(s)?;
+                let (action, localised) = self.one().scanned(s)?;
                 if matches!(action, Action::Scan) {
                     return Ok((self.finish(DoneReason::NoProgress), localised));
                 }
@@ -197,22 +227,54 @@ impl Session {
         }
     }
 
+    /// The one robot's run (the session expects a move or a scan, so it has started with one
+    /// robot).
+    fn one(&mut self) -> &mut One {
+        match self.run.as_mut() {
+            Some(Run::One(one)) => one,
+            _ => unreachable!("only a one-robot session expects a move or a scan"),
+        }
+    }
+
+    /// The team's run (the session expects team reports).
+    fn team(&mut self) -> &mut RoiRun {
+        match self.run.as_mut() {
+            Some(Run::Team(team)) => team,
+            _ => unreachable!("only a team session expects team reports"),
+        }
+    }
+
     /// The reply to the strategy's action; `failing` when it answers a failed move.
     fn answer(&mut self, action: Action<Point>, failing: bool) -> ReplyBody {
-        let run = self.run.as_mut().expect("started");
+        let max_scans = self.max_scans;
         match action {
-            Action::Scan if run.scans() >= self.max_scans => self.finish(DoneReason::Limit),
+            Action::Scan if self.one().scans() >= max_scans => self.finish(DoneReason::Limit),
             Action::Scan => {
                 self.expect = Expect::Scan;
                 ReplyBody::Scan
             }
             Action::MoveTo { to } => {
+                let (goal, map_goal, stop) = self.one().goal(to);
                 self.expect = Expect::Move;
-                let (goal, map_goal, stop) = run.goal(to);
                 ReplyBody::Goal { goal, map_goal, stop }
             }
             Action::Done if failing => self.finish(DoneReason::Stuck),
             Action::Done => self.finish(DoneReason::Explored),
+        }
+    }
+
+    /// The reply to a team's orders (or its end).
+    fn orders(&mut self, outcome: Outcome) -> ReplyBody {
+        let max_scans = self.max_scans;
+        match outcome {
+            Outcome::Orders(o) if RoiRun::asks_scan(&o) && self.team().scans() >= max_scans => {
+                self.finish(DoneReason::Limit)
+            }
+            Outcome::Orders(orders) => {
+                self.expect = Expect::Team;
+                ReplyBody::Orders { orders }
+            }
+            Outcome::Over(reason) => self.finish(reason),
         }
     }
 
@@ -223,8 +285,20 @@ impl Session {
     }
 }
 
+/// A one-robot family's request names no robot of a team and no team clock.
+fn single(request: &Request) -> Result<(), ProtocolError> {
+    match request.team_fields() {
+        Some((Some(r), _, _)) if r != 0 => Err(ProtocolError::field(
+            "robot",
+            "is for the roi family (a team); this session has one robot",
+        )),
+        Some((_, Some(_), _)) => Err(ProtocolError::field("time", "is for the roi family")),
+        _ => Ok(()),
+    }
+}
+
 /// A pose must be finite.
-fn check_pose(field: &str, p: &Pose) -> Result<(), ProtocolError> {
+pub(super) fn check_pose(field: &str, p: &Pose) -> Result<(), ProtocolError> {
     if p.is_finite() {
         Ok(())
     } else {
@@ -242,47 +316,62 @@ fn non_negative(field: &str, v: f64) -> Result<f64, ProtocolError> {
 }
 
 impl Run {
-    fn start(s: &StartIn) -> Result<(Self, Action<Point>), ProtocolError> {
+    fn start(s: &StartIn) -> Result<(Self, Begin), ProtocolError> {
         check_pose("pose", &s.pose)?;
         let cost = match s.cost {
             None => CostModel::default(),
             Some(c) => CostModel::new(c.scan_time, c.move_time, c.speed)
                 .map_err(|e| ProtocolError::field("cost", e.to_string()))?,
         };
-        match s.family {
-            Family::Polygon => {
-                for (field, present) in [("corner", s.corner.is_some())] {
-                    if present {
-                        return Err(ProtocolError::field(field, "is for the corner family"));
-                    }
-                }
+        // What each family's set-up is made of; anything else is refused, named.
+        let parts = [
+            ("robot", s.robot.is_some(), Family::Polygon),
+            ("sensor", s.sensor.is_some(), Family::Polygon),
+            ("odometry_drift", s.odometry_drift.is_some(), Family::Polygon),
+            ("corner", s.corner.is_some(), Family::Corner),
+            ("roi", s.roi.is_some(), Family::Roi),
+        ];
+        for (field, present, family) in parts {
+            if present && family != s.family {
+                let name = serde_json::to_value(family).expect("a name");
+                let name = name.as_str().unwrap_or_default();
+                return Err(ProtocolError::field(field, format!("is for the {name} family")));
+            }
+        }
+        match (s.family, &s.corner, &s.roi) {
+            (Family::Polygon, _, _) => {
                 let mut run = PolygonRun::new(s, cost)?;
                 let action = run.strategy.act(&Feedback::Start { at: run.map_pose(s.pose).at() });
-                Ok((Self::Polygon(Box::new(run)), action))
+                Ok((Self::One(One::Polygon(Box::new(run))), Begin::Action(action)))
             }
-            Family::Corner => {
-                for (field, present) in [
-                    ("robot", s.robot.is_some()),
-                    ("sensor", s.sensor.is_some()),
-                    ("odometry_drift", s.odometry_drift.is_some()),
-                ] {
-                    if present {
-                        return Err(ProtocolError::field(field, "is for the polygon family"));
-                    }
-                }
-                let Some(corner) = &s.corner else {
-                    return Err(ProtocolError::field(
-                        "corner",
-                        "missing: the corner family needs {\"distance\": D}",
-                    ));
-                };
+            (Family::Corner, Some(corner), _) => {
                 let mut run = CornerRun::new(s, corner, cost)?;
                 let action = run.act(CornerFeedback::Start);
-                Ok((Self::Corner(Box::new(run)), action))
+                Ok((Self::One(One::Corner(Box::new(run))), Begin::Action(action)))
+            }
+            (Family::Corner, None, _) => Err(ProtocolError::field(
+                "corner",
+                "missing: the corner family needs {\"distance\": D}",
+            )),
+            (Family::Roi, _, Some(roi)) => {
+                let (run, orders) = RoiRun::start(s, roi, cost)?;
+                Ok((Self::Team(Box::new(run)), Begin::Orders(orders)))
+            }
+            (Family::Roi, _, None) => {
+                Err(ProtocolError::field("roi", "missing: the roi family needs {\"robots\": N}"))
             }
         }
     }
 
+    fn summary(&self) -> Summary {
+        match self {
+            Self::One(one) => one.summary(),
+            Self::Team(team) => team.summary(),
+        }
+    }
+}
+
+impl One {
     fn odometry(&mut self) -> &mut Odometry {
         match self {
             Self::Polygon(r) => &mut r.odometry,
@@ -371,7 +460,12 @@ impl Run {
             }
         };
         let terms = cost.price(&tally);
-        Summary { strategy, totals: RunTotals::new(&tally, terms.total(), &terms), windows }
+        Summary {
+            strategy,
+            totals: RunTotals::new(&tally, terms.total(), &terms),
+            windows,
+            team: None,
+        }
     }
 }
 
@@ -450,6 +544,9 @@ impl PolygonRun {
     fn scanned(&mut self, s: &ScanIn) -> Result<(Action<Point>, Option<Localised>), ProtocolError> {
         if s.edge.is_some() {
             return Err(ProtocolError::field("edge", "is for the corner family"));
+        }
+        if s.frames.is_some() {
+            return Err(ProtocolError::field("frames", "is for the roi family"));
         }
         let Some(scan) = &s.scan else {
             return Err(ProtocolError::field(
@@ -543,6 +640,9 @@ impl CornerRun {
                 "scan",
                 "is for the polygon family; the corner family reports `edge`",
             ));
+        }
+        if s.frames.is_some() {
+            return Err(ProtocolError::field("frames", "is for the roi family"));
         }
         let observation = match s.edge {
             None => CornerObservation::Hidden,

@@ -52,7 +52,7 @@ pub struct GridWorld {
     sensor: GridSensor,
     seed: u64,
     unit_times: std::cell::Cell<Option<(f64, [Option<f64>; 4])>>,
-    boards: Boards,
+    board: Blackboard,
     /// One bit per cell of the region's bounding box.
     visited: Vec<u64>,
 }
@@ -61,23 +61,20 @@ impl GridWorld {
     /// A world whose root record is on the start cell.
     pub fn new(roi: GridRoi, drift: Drift, sensor: GridSensor, seed: u64) -> Self {
         let mut w = Self::without_root(roi, drift, sensor, seed);
-        w.boards.set(w.roi.start(), Record { root: true, ..Record::default() });
+        w.board.plant_root(w.roi.start());
         w
     }
 
     /// The same world, with its records replaced (to resume a mission).
     #[must_use]
     pub fn with_records(mut self, records: &CellMap<Record>) -> Self {
-        self.boards = Boards::new(&self.roi);
-        for (c, r) in records {
-            self.boards.set(*c, *r);
-        }
+        self.board = Blackboard::over(&self.roi, records);
         self
     }
 
     /// Every record robots have left (cells nobody has touched have none).
     pub fn records(&self) -> CellMap<Record> {
-        self.boards.records()
+        self.board.records()
     }
 
     /// The region cells some robot has stood on (the simulator's own count, independent of
@@ -110,13 +107,13 @@ impl GridWorld {
 
     /// The record on one cell (a blank one if nobody has touched it).
     pub fn record(&self, c: Cell) -> Record {
-        self.boards.get(c)
+        self.board.record(c)
     }
 
     /// A world with no root yet: a search must find the region first, and the first cell a
     /// robot reaches of it becomes the root (the field pipeline).
     pub fn without_root(roi: GridRoi, drift: Drift, sensor: GridSensor, seed: u64) -> Self {
-        let boards = Boards::new(&roi);
+        let board = Blackboard::over(&roi, &CellMap::default());
         let bits = roi.bitmap_words();
         Self {
             roi,
@@ -124,7 +121,7 @@ impl GridWorld {
             sensor,
             seed,
             unit_times: std::cell::Cell::default(),
-            boards,
+            board,
             visited: vec![0; bits],
         }
     }
@@ -189,16 +186,65 @@ impl GridWorld {
     /// Robots `group` stand on `at`: the cell counts as visited, and they read its record and
     /// what the four neighbouring cells' records say of the tree.
     pub(crate) fn arrive(&mut self, at: Cell, group: &[usize]) -> GridContext {
-        let present = group.to_vec();
         self.mark_visited(at);
+        self.board.context(at, group)
+    }
+
+    /// A robot merges `note` into the record on `at` (see [`Blackboard::write`]).
+    pub(crate) fn write(&mut self, at: Cell, note: Record) {
+        self.board.write(at, note);
+    }
+}
+
+/// The records robots leave on the cells: the only way they learn from one another besides
+/// meeting. A [`GridWorld`] keeps one over its region; a server whose robots report over a
+/// protocol keeps one over cells it learns of as they come ([`Blackboard::unbounded`]).
+#[derive(Debug, Clone)]
+pub struct Blackboard {
+    boards: Boards,
+}
+
+impl Blackboard {
+    /// A board for a region nobody knows yet: every record lives in a hash map.
+    pub fn unbounded() -> Self {
+        Self { boards: Boards::unbounded() }
+    }
+
+    /// A board packed over `roi`'s bounding box, holding `records`.
+    fn over(roi: &GridRoi, records: &CellMap<Record>) -> Self {
+        let mut boards = Boards::new(roi);
+        for (c, r) in records {
+            boards.set(*c, *r);
+        }
+        Self { boards }
+    }
+
+    /// Marks `c` as the root of the tree.
+    pub fn plant_root(&mut self, c: Cell) {
+        self.boards.update(c, |r| r.root = true);
+    }
+
+    /// The record on one cell (a blank one if nobody has touched it).
+    pub fn record(&self, c: Cell) -> Record {
+        self.boards.get(c)
+    }
+
+    /// Every record robots have left (cells nobody has touched have none).
+    pub fn records(&self) -> CellMap<Record> {
+        self.boards.records()
+    }
+
+    /// What robots `group` learn standing on `at`: its record and what the four neighbouring
+    /// cells' records say of the tree.
+    pub fn context(&self, at: Cell, group: &[usize]) -> GridContext {
         let record = self.boards.get(at);
         let neighbours = std::array::from_fn(|i| self.boards.tree_state(neighbour(at, i)));
-        GridContext { record, neighbours, present }
+        GridContext { record, neighbours, present: group.to_vec() }
     }
 
     /// A robot merges `note` into the record on `at`; the children a first scan lists join
     /// the tree.
-    pub(crate) fn write(&mut self, at: Cell, note: Record) {
+    pub fn write(&mut self, at: Cell, note: Record) {
         let mut listed = false;
         self.boards.update(at, |record| {
             listed = note.scanned && !record.scanned;

@@ -96,6 +96,11 @@ impl Boards {
         }
     }
 
+    /// Boards with no dense part: every record in the hash map.
+    pub(super) fn unbounded() -> Self {
+        Self { min: [0, 0], width: 0, height: 0, dense: Vec::new(), sparse: CellMap::default() }
+    }
+
     fn index(&self, c: Cell) -> Option<usize> {
         let (r, k) = (c[0] - self.min[0], c[1] - self.min[1]);
         (r >= 0 && k >= 0 && (r as usize) < self.height && (k as usize) < self.width)
