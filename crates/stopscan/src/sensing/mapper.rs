@@ -25,6 +25,13 @@ pub const MAP_SAME_WALL: f64 = 0.3;
 /// move does not pin the alignment to odometry.
 const MIN_PRIOR: Prior = Prior { position: 0.01, heading: 0.002 };
 
+/// The smallest correction ICP may not make, metres: a wall seen again within
+/// [`MAP_SAME_WALL`] is the same wall.
+pub const MIN_PLAUSIBLE_SHIFT: f64 = MAP_SAME_WALL;
+
+/// The smallest turn ICP may not make, radians (3°).
+pub const MIN_PLAUSIBLE_TURN: f64 = 0.052;
+
 /// How scans are read and aligned, and how far odometry drifts.
 #[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
 pub struct MapperParams {
@@ -104,8 +111,19 @@ impl Mapper {
             position: (p.drift * driven).max(MIN_PRIOR.position),
             heading: (p.heading_drift * driven).max(MIN_PRIOR.heading),
         };
+        // A correction is plausible within three standard deviations of how far odometry may
+        // be off: its position error, and the heading error made on the way turning every
+        // metre after it (about `heading_drift · d² / 2` across the direction of travel, for a
+        // trip of several legs between scans). Never less than a mapped wall's own tolerance.
+        let heading = p.heading_drift * driven;
+        let reach = (p.drift * driven).hypot(heading * driven / 2.0);
+        let icp = IcpParams {
+            max_shift: (3.0 * std::f64::consts::SQRT_2 * reach).max(MIN_PLAUSIBLE_SHIFT),
+            max_turn: (3.0 * heading).max(MIN_PLAUSIBLE_TURN),
+            ..p.icp
+        };
         let alignment = (!self.map.is_empty())
-            .then(|| icp::align(&local.points, odometry, Some(prior), &self.map, &p.icp));
+            .then(|| icp::align(&local.points, odometry, Some(prior), &self.map, &icp));
         let estimate = alignment.as_ref().map_or(*odometry, |a| a.pose);
         let place = |q: Point| estimate.apply(q);
         if alignment.as_ref().is_none_or(|a| a.fallback.is_none()) {
