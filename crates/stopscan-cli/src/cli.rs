@@ -107,6 +107,21 @@ pub(crate) enum Command {
     /// Drive a real robot: speak protocol stopscan/1 (line-delimited JSON, docs/protocol.md) on
     /// standard input and output, or on TCP with --listen; resumable from a journal.
     Serve(ServeArgs),
+    /// Shell completions (bash, zsh, fish, elvish, powershell) from the same definitions as
+    /// --help, on standard output or to --out FILE: `stopscan completions bash >
+    /// ~/.local/share/bash-completion/completions/stopscan`.
+    Completions(CompletionsArgs),
+    /// Man pages from the same definitions as --help: stopscan.1 on standard output, or with
+    /// --out DIR one page per command (stopscan.1, stopscan-explore.1, stopscan-corner-circle.1,
+    /// ...): `stopscan man --out man && man -l man/stopscan-explore.1`.
+    Man,
+}
+
+#[derive(Debug, Args)]
+pub(crate) struct CompletionsArgs {
+    /// The shell.
+    #[arg(value_enum)]
+    pub(crate) shell: clap_complete::Shell,
 }
 
 #[derive(Debug, Args)]

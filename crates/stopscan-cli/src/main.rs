@@ -105,7 +105,44 @@ fn run(args: &cli::Cli) -> anyhow::Result<()> {
         Some(cli::Command::Reproduce(r)) => reproduce::run(r, g),
         Some(cli::Command::Bench(b)) => bench::run(b, g),
         Some(cli::Command::Serve(a)) => serve::run(a, g),
+        Some(cli::Command::Completions(a)) => completions(a.shell, g),
+        Some(cli::Command::Man) => man(g),
     }
+}
+
+/// Writes the shell's completions to standard output, or to `--out FILE`.
+fn completions(shell: clap_complete::Shell, g: &cli::Global) -> anyhow::Result<()> {
+    let mut text = Vec::new();
+    clap_complete::generate(shell, &mut command(), "stopscan", &mut text);
+    match &g.out {
+        Some(path) => Ok(stopscan::io::atomic::write_bytes(path, &text)?),
+        None => Ok(std::io::stdout().write_all(&text)?),
+    }
+}
+
+/// Writes `stopscan.1` to standard output, or every command's page into the directory `--out`.
+fn man(g: &cli::Global) -> anyhow::Result<()> {
+    let top = command();
+    let Some(dir) = &g.out else {
+        let mut page = Vec::new();
+        clap_mangen::Man::new(top).render(&mut page)?;
+        return Ok(std::io::stdout().write_all(&page)?);
+    };
+    // Every command and subcommand, named as its page is: stopscan-corner-circle.
+    let mut pending = vec![(String::from("stopscan"), top)];
+    let mut written = 0usize;
+    while let Some((name, cmd)) = pending.pop() {
+        for sub in cmd.get_subcommands() {
+            pending.push((format!("{name}-{}", sub.get_name()), sub.clone()));
+        }
+        let mut page = Vec::new();
+        clap_mangen::Man::new(cmd.name(name.clone()).bin_name(name.replace('-', " ")))
+            .render(&mut page)?;
+        stopscan::io::atomic::write_bytes(&dir.join(format!("{name}.1")), &page)?;
+        written += 1;
+    }
+    eprintln!("wrote {written} man pages to {}", dir.display());
+    Ok(())
 }
 
 /// Checks every output before any work (a long sweep must not fail at its end): a file output
@@ -152,8 +189,8 @@ fn check_targets(args: &cli::Cli) -> anyhow::Result<()> {
             }
             _ => file(out),
         },
-        Some(Command::Visibility(_) | Command::Bench(_)) => file(out),
-        Some(Command::Reproduce(_)) => out.map_or(Ok(()), ensure_dir),
+        Some(Command::Visibility(_) | Command::Bench(_) | Command::Completions(_)) => file(out),
+        Some(Command::Reproduce(_) | Command::Man) => out.map_or(Ok(()), ensure_dir),
         Some(Command::Serve(a)) => {
             unused("serve")?;
             file(a.journal.as_deref())
