@@ -107,6 +107,9 @@ pub(crate) enum Command {
     /// Drive a real robot: speak protocol stopscan/1 (line-delimited JSON, docs/protocol.md) on
     /// standard input and output, or on TCP with --listen; resumable from a journal.
     Serve(ServeArgs),
+    /// Join the CSV files of a sharded sweep (`explore --env DIR --shard I/N`) into one, in the
+    /// order the whole sweep writes (to --out, default sweep.csv).
+    Merge(MergeArgs),
     /// Shell completions (bash, zsh, fish, elvish, powershell) from the same definitions as
     /// --help, on standard output or to --out FILE: `stopscan completions bash >
     /// ~/.local/share/bash-completion/completions/stopscan`.
@@ -115,6 +118,13 @@ pub(crate) enum Command {
     /// --out DIR one page per command (stopscan.1, stopscan-explore.1, stopscan-corner-circle.1,
     /// ...): `stopscan man --out man && man -l man/stopscan-explore.1`.
     Man,
+}
+
+#[derive(Debug, Args)]
+pub(crate) struct MergeArgs {
+    /// The parts' CSV files, in any order.
+    #[arg(required = true)]
+    pub(crate) parts: Vec<PathBuf>,
 }
 
 #[derive(Debug, Args)]
@@ -351,6 +361,11 @@ pub(crate) struct ExploreArgs {
     /// or a folder of them: a sweep in parallel that writes CSV (to --out, default sweep.csv).
     #[arg(long)]
     pub(crate) env: PathBuf,
+    /// With --env DIR: run only part I of N of the sweep (every N-th file from the I-th, files
+    /// sorted by name), so that N machines or jobs share it; `stopscan merge` joins the parts'
+    /// CSV files into the whole sweep's.
+    #[arg(long, value_name = "I/N", value_parser = stopscan::pipeline::sweep::Shard::parse)]
+    pub(crate) shard: Option<stopscan::pipeline::sweep::Shard>,
     /// The strategy (the help lists the polygon registry: `main::command`).
     #[arg(long, default_value = "depth_first")]
     pub(crate) strategy: String,

@@ -85,6 +85,12 @@ pub(crate) fn run(a: &ExploreArgs, g: &Global) -> anyhow::Result<()> {
     if a.env.is_dir() {
         return sweep(a, g, &options);
     }
+    if a.shard.is_some() {
+        anyhow::bail!(
+            "--shard splits a folder sweep (explore --env DIR); {} is a file",
+            a.env.display()
+        );
+    }
     let start = a.start.as_deref().map(parse_point).transpose()?;
     let spinner = Spinner::new();
     let o = stopscan::pipeline::explore::explore_file(&a.env, start, &options, &mut |m| {
@@ -224,7 +230,7 @@ fn summary(w: &mut dyn Write, o: &RunRecord) -> std::io::Result<()> {
 /// bar over the runs.
 fn sweep(a: &ExploreArgs, g: &Global, options: &ExploreOptions) -> anyhow::Result<()> {
     let bar = std::sync::OnceLock::new();
-    let rows = stopscan::pipeline::sweep::sweep_dir(&a.env, options, &|e| match e {
+    let rows = stopscan::pipeline::sweep::sweep_dir(&a.env, options, a.shard, &|e| match e {
         SweepEvent::Warning(w) => eprintln!("warning: {w}"),
         SweepEvent::Started { runs } => {
             let _ = bar.set(crate::output::bar(runs, "runs"));
@@ -239,6 +245,14 @@ fn sweep(a: &ExploreArgs, g: &Global, options: &ExploreOptions) -> anyhow::Resul
     .map_err(explore_error)?;
     if let Some(b) = bar.get() {
         b.finish_and_clear();
+    }
+    if let Some(s) = a.shard
+        && rows.is_empty()
+    {
+        eprintln!(
+            "note: shard {}/{} has no files (there are more shards than files); its CSV is empty",
+            s.index, s.count
+        );
     }
     let out = g.out.clone().unwrap_or_else(|| PathBuf::from("sweep.csv"));
     atomic::write(&out, |w| {

@@ -14,6 +14,7 @@ mod explore;
 mod generate;
 mod limits;
 mod map;
+mod merge;
 mod output;
 mod reproduce;
 mod roi;
@@ -105,6 +106,7 @@ fn run(args: &cli::Cli) -> anyhow::Result<()> {
         Some(cli::Command::Reproduce(r)) => reproduce::run(r, g),
         Some(cli::Command::Bench(b)) => bench::run(b, g),
         Some(cli::Command::Serve(a)) => serve::run(a, g),
+        Some(cli::Command::Merge(a)) => merge::run(a, g),
         Some(cli::Command::Completions(a)) => completions(a.shell, g),
         Some(cli::Command::Man) => man(g),
     }
@@ -190,6 +192,7 @@ fn check_targets(args: &cli::Cli) -> anyhow::Result<()> {
             _ => file(out),
         },
         Some(Command::Visibility(_) | Command::Bench(_) | Command::Completions(_)) => file(out),
+        Some(Command::Merge(_)) => check_file(out.unwrap_or(Path::new("sweep.csv"))),
         Some(Command::Reproduce(_) | Command::Man) => out.map_or(Ok(()), ensure_dir),
         Some(Command::Serve(a)) => {
             unused("serve")?;

@@ -411,3 +411,60 @@ fn raw_scan_flags_are_checked() {
     let dir = common::fixture("ros-maps");
     fails(&["explore", "--env", &dir, "--sensor", "lidar"], &["raw scans", "one environment"]);
 }
+
+#[test]
+fn a_sweep_in_shards_merges_into_the_whole_sweep_byte_for_byte() {
+    let dir = temp("shards");
+    let envs = dir.join("envs");
+    std::fs::create_dir_all(&envs).unwrap();
+    for (k, (family, size)) in
+        [("comb", "3"), ("comb", "5"), ("spiral", "3"), ("star", "5"), ("office", "2")]
+            .iter()
+            .enumerate()
+    {
+        let out = envs.join(format!("e{k}.geojson"));
+        let o = stopscan(&["generate", family, "--size", size, "--output", out.to_str().unwrap()]);
+        assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    }
+    let path = |name: &str| dir.join(name).to_str().unwrap().to_string();
+    let sweep = |extra: &[&str], out: &str| {
+        let mut args = vec!["explore", "--env", envs.to_str().unwrap(), "--strategy", "all"];
+        args.extend_from_slice(extra);
+        let out = path(out);
+        args.extend(["--out", out.as_str()]);
+        let o = stopscan(&args);
+        assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    };
+    sweep(&[], "whole.csv");
+    for k in 1..=3 {
+        sweep(&["--shard", &format!("{k}/3")], &format!("part{k}.csv"));
+    }
+    // Two files each for shards 1 and 2, one for shard 3; 7 of 7 has none.
+    sweep(&["--shard", "7/7"], "empty.csv");
+    let whole = std::fs::read_to_string(dir.join("whole.csv")).unwrap();
+    let lines = |name: &str| std::fs::read_to_string(dir.join(name)).unwrap().lines().count();
+    let strategies = whole.lines().count() / 5;
+    assert_eq!(lines("part1.csv"), 1 + 2 * strategies);
+    assert_eq!(lines("part3.csv"), 1 + strategies);
+    assert_eq!(lines("empty.csv"), 0);
+    // The parts in any order, the empty one too: the whole sweep's bytes.
+    let merged = path("merged.csv");
+    let parts = [path("part3.csv"), path("empty.csv"), path("part1.csv"), path("part2.csv")];
+    let mut args = vec!["merge", "--out", merged.as_str()];
+    args.extend(parts.iter().map(String::as_str));
+    let o = stopscan(&args);
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    assert_eq!(std::fs::read_to_string(&merged).unwrap(), whole);
+    // A part given twice is refused, naming both places.
+    let p1 = path("part1.csv");
+    fails(
+        &["merge", p1.as_str(), p1.as_str(), "--out", merged.as_str()],
+        &["is also in", "line 2"],
+    );
+    // --shard needs a folder, and 1 <= I <= N.
+    let file = envs.join("e0.geojson");
+    fails(&["explore", "--env", file.to_str().unwrap(), "--shard", "1/2"], &["folder sweep"]);
+    for bad in ["0/2", "3/2", "2"] {
+        fails(&["explore", "--env", envs.to_str().unwrap(), "--shard", bad], &["--shard"]);
+    }
+}

@@ -63,6 +63,40 @@ pub fn environment_files(dir: &Path) -> Result<Vec<PathBuf>, ExploreError> {
     Ok(files)
 }
 
+/// One part of a sweep split across machines: shard `index` of `count` (from 1) takes every
+/// `count`-th environment file, starting with file `index` (files sorted by path). Any
+/// scheduler can run the parts; their CSV files join in `stopscan merge`.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct Shard {
+    /// Which part, from 1.
+    pub index: usize,
+    /// How many parts.
+    pub count: usize,
+}
+
+impl Shard {
+    /// Reads `I/N` (1 ≤ I ≤ N).
+    ///
+    /// # Errors
+    /// A message naming what is wrong.
+    pub fn parse(s: &str) -> Result<Self, String> {
+        let (i, n) =
+            s.split_once('/').ok_or_else(|| format!("expected I/N (such as 2/8), got {s:?}"))?;
+        let number =
+            |t: &str| t.trim().parse::<usize>().map_err(|_| format!("{t:?} is not a whole number"));
+        let (index, count) = (number(i)?, number(n)?);
+        if count == 0 || index == 0 || index > count {
+            return Err(format!("the shard I/N needs 1 <= I <= N, got {index}/{count}"));
+        }
+        Ok(Self { index, count })
+    }
+
+    /// Whether the `k`-th file (from 0, in path order) is this shard's.
+    pub fn takes(&self, k: usize) -> bool {
+        k % self.count == self.index - 1
+    }
+}
+
 /// The strategies `name` stands for: every registered one for `all`, else the one.
 ///
 /// # Errors
@@ -87,7 +121,9 @@ fn file_name(path: &Path) -> String {
 /// whatever the thread count. Each file's lower bounds are computed once, within
 /// `options.limits.bounds_seconds`; `options.seed` and `options.trace` are not used; ROS maps are
 /// read with `options.simplify`. A robot (a footprint or a window rule) is refused:
-/// [`ExploreError::RobotInSweep`].
+/// [`ExploreError::RobotInSweep`]. With a `shard`, only its files are explored (it may have
+/// none, when there are more shards than files): the rows are the full sweep's rows of those
+/// files, in the same order.
 ///
 /// # Errors
 /// [`ExploreError`] for a folder that cannot be read or holds no environment file, an unknown
@@ -95,9 +131,18 @@ fn file_name(path: &Path) -> String {
 pub fn sweep_dir(
     dir: &Path,
     options: &ExploreOptions,
+    shard: Option<Shard>,
     on: &(dyn Fn(SweepEvent) + Sync),
 ) -> Result<Vec<SweepRow>, ExploreError> {
-    let files = environment_files(dir)?;
+    let mut files = environment_files(dir)?;
+    if let Some(shard) = shard {
+        files = files
+            .into_iter()
+            .enumerate()
+            .filter(|(k, _)| shard.takes(*k))
+            .map(|(_, f)| f)
+            .collect();
+    }
     let strategies = strategies(&options.strategy)?;
     check_range(&options.strategy, options.range)?;
     if options.range.is_none() && strategies.contains(&"range_limited") {
@@ -182,7 +227,7 @@ mod tests {
         std::fs::write(dir.join("notes.md"), "not an environment").unwrap();
         let warnings = std::sync::Mutex::new(Vec::new());
         let options = ExploreOptions { strategy: "all".into(), ..ExploreOptions::default() };
-        let rows = sweep_dir(&dir, &options, &|e| {
+        let rows = sweep_dir(&dir, &options, None, &|e| {
             if let SweepEvent::Warning(w) = e {
                 warnings.lock().unwrap().push(w.to_string());
             }
@@ -195,6 +240,12 @@ mod tests {
         let warnings = warnings.into_inner().unwrap();
         assert_eq!(warnings[0], "range_limited runs with unlimited range (no --range)");
         assert!(warnings[1].starts_with("b.wkt: not swept: "), "{warnings:?}");
+        // Shard 2 of 2 takes the second file only: its rows are the full sweep's.
+        let part = sweep_dir(&dir, &options, Some(Shard::parse("2/2").unwrap()), &|_| {}).unwrap();
+        assert_eq!(part, rows[n..]);
+        for bad in ["0/2", "3/2", "1/0", "2", "a/b"] {
+            assert!(Shard::parse(bad).is_err(), "{bad}");
+        }
         let e = strategies("warp").unwrap_err().to_string();
         assert!(e.ends_with("range_limited, or all"), "{e}");
     }
