@@ -226,6 +226,7 @@ fn bench_explore(a: &BenchArgs, g: &Global) -> anyhow::Result<()> {
             Ok(SweepInput { name: format!("office-{i}"), domain: inst.domain, start: inst.start })
         })
         .collect::<anyhow::Result<_>>()?;
+    let bar = crate::output::bar(n as u64, "floors");
     let t = Instant::now();
     let rows = stopscan::experiment::polygon::sweep(
         &inputs,
@@ -233,9 +234,10 @@ fn bench_explore(a: &BenchArgs, g: &Global) -> anyhow::Result<()> {
         &stopscan::protocol::CostModel::default(),
         None,
         0.0, // no lower bounds: the benchmark times the exploration
-        &|| {},
+        &|| bar.inc(1),
     );
     let secs = t.elapsed().as_secs_f64();
+    bar.finish_and_clear();
     let failing: Vec<_> = rows
         .iter()
         .filter(|r| {
@@ -273,6 +275,7 @@ fn bench_scans(a: &BenchArgs, g: &Global) -> anyhow::Result<()> {
         ("office (built-in)".to_string(), env.domain)
     };
     let lidar = stopscan::world::lidar::Lidar::default();
+    let bar = crate::output::bar(n as u64, "scan pairs");
     let t = Instant::now();
     let r = stopscan::experiment::scans::scan_pairs(
         &domain,
@@ -282,7 +285,9 @@ fn bench_scans(a: &BenchArgs, g: &Global) -> anyhow::Result<()> {
         0.3,
         10f64.to_radians(),
         g.seed,
+        &mut || bar.inc(1),
     );
+    bar.finish_and_clear();
     let value = json!({
         "name": "raw-scans", "environment": name, "lidar": lidar, "seed": g.seed,
         "pairs_within_m": 3.0, "initial_error": {"shift_m": 0.3, "turn_deg": 10.0},
@@ -362,13 +367,21 @@ fn bench_roi(a: &BenchArgs, g: &Global) -> anyhow::Result<()> {
     use stopscan::world::grid::{Drift, GridRoi, GridSensor, GridWorld};
     let cells = a.n.unwrap_or(1_000_000);
     crate::roi::check_size(g, "--n", cells, a.robots)?;
+    let spinner = crate::output::Spinner::new();
+    spinner.show(&format!("generating a region of {cells} cells"));
     let t = Instant::now();
     let roi = GridRoi::random(cells, g.seed)?;
     let generate = t.elapsed().as_secs_f64();
     let cost = CostModel::new(0.0, 0.0, 1.0)?;
     let mut last = None;
     let mut times = Vec::new();
-    for _ in 0..a.repeat.max(1) {
+    for k in 0..a.repeat.max(1) {
+        spinner.show(&format!(
+            "{} robots explore {cells} cells (run {} of {})",
+            a.robots,
+            k + 1,
+            a.repeat.max(1)
+        ));
         let mut world = GridWorld::new(roi.clone(), Drift::default(), GridSensor::Ideal, g.seed);
         let t = Instant::now();
         let m = stopscan::sim::grid::explore(&mut world, a.robots, cost, Recording::NONE)?;
@@ -380,9 +393,18 @@ fn bench_roi(a: &BenchArgs, g: &Global) -> anyhow::Result<()> {
     let home = m.team.robots.iter().all(|r| r.done && r.at == roi.start());
     let b = GridBounds::of_world(&world, a.robots, &cost);
     let time = m.team.makespan();
+    drop(spinner);
+    let bar = crate::output::bar(stopscan::experiment::grid::FIG7_POINTS as u64, "Fig. 7 points");
     let t = Instant::now();
-    let rows = stopscan::experiment::grid::fig7_rows(stopscan::experiment::ROI_TRIALS, g.seed)?;
+    let rows = stopscan::experiment::grid::fig7_rows(
+        stopscan::experiment::ROI_TRIALS,
+        g.seed,
+        &mut || {
+            bar.inc(1);
+        },
+    )?;
     let fig7 = t.elapsed().as_secs_f64();
+    bar.finish_and_clear();
     let trials: usize = rows.iter().map(|r| r.trials).sum();
     let within: usize = rows.iter().map(|r| r.within_upper).sum();
     let value = json!({

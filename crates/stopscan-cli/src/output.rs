@@ -87,7 +87,7 @@ pub(crate) fn bar(len: u64, unit: &str) -> indicatif::ProgressBar {
     let bar = indicatif::ProgressBar::new(len);
     bar.set_style(
         indicatif::ProgressStyle::with_template(&format!(
-            "{{bar:40}} {{pos}}/{{len}} {unit} {{elapsed}}, about {{eta}} left"
+            "{{bar:40}} {{pos}}/{{len}} {unit} {{elapsed}}, about {{eta}} left {{msg}}"
         ))
         .unwrap_or_else(|_| indicatif::ProgressStyle::default_bar()),
     );

@@ -21,6 +21,7 @@ pub(crate) fn run(a: &cli::ReproduceArgs, g: &Global) -> anyhow::Result<()> {
         "about 2 µs per sample and strategy",
         "",
     )?;
+    let bar = std::cell::OnceCell::new();
     let outs = stopscan::pipeline::reproduce::reproduce(
         &a.id,
         a.samples,
@@ -28,7 +29,15 @@ pub(crate) fn run(a: &cli::ReproduceArgs, g: &Global) -> anyhow::Result<()> {
         &mut || data_dir(a.data.as_deref()).map_err(|e| e.to_string()),
         g.out.as_deref(),
         &mut |e| eprintln!("views-benchmarks skipped: {e}"),
+        &mut |p| {
+            let bar = bar.get_or_init(|| crate::output::bar(p.total as u64, "reproductions"));
+            bar.set_position(p.index as u64);
+            bar.set_message(p.id.to_string());
+        },
     )?;
+    if let Some(b) = bar.get() {
+        b.finish_and_clear();
+    }
     let stdout = std::io::stdout();
     let mut w = stdout.lock();
     if g.format == cli::Format::Json {

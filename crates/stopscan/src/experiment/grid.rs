@@ -113,26 +113,30 @@ pub const ROBOTS: [usize; 10] = [1, 2, 4, 8, 12, 16, 20, 24, 28, 32];
 /// S_r / S_p of sweep (d).
 pub const RATIOS: [f64; 10] = [1.5, 2.0, 2.5, 3.0, 3.5, 4.0, 4.5, 5.0, 5.5, 6.0];
 
-/// All three sweeps, `trials` regions per point.
+/// The points of the three sweeps ([`fig7_rows`] makes one row per point).
+pub const FIG7_POINTS: usize = CELLS.len() + ROBOTS.len() + RATIOS.len();
+
+/// All three sweeps, `trials` regions per point; `progress` is called after each of the
+/// [`FIG7_POINTS`] points.
 ///
 /// # Errors
 /// [`ExperimentError::Roi`] or [`ExperimentError::Mission`] if a region or a run fails (it
 /// never should).
-pub fn fig7_rows(trials: usize, seed: u64) -> Result<Vec<Fig7Row>, ExperimentError> {
+pub fn fig7_rows(
+    trials: usize,
+    seed: u64,
+    progress: &mut dyn FnMut(),
+) -> Result<Vec<Fig7Row>, ExperimentError> {
     let (c0, r0, s0) = FIXED;
-    let mut rows = Vec::new();
-    let mut k = 0;
-    for c in CELLS {
-        rows.push(point("cells", c as f64, (c, r0, s0), trials, seed, k)?);
-        k += 1;
-    }
-    for r in ROBOTS {
-        rows.push(point("robots", r as f64, (c0, r, s0), trials, seed, k)?);
-        k += 1;
-    }
-    for s in RATIOS {
-        rows.push(point("speed_ratio", s, (c0, r0, s), trials, seed, k)?);
-        k += 1;
+    let points = CELLS
+        .iter()
+        .map(|&c| ("cells", c as f64, (c, r0, s0)))
+        .chain(ROBOTS.iter().map(|&r| ("robots", r as f64, (c0, r, s0))))
+        .chain(RATIOS.iter().map(|&s| ("speed_ratio", s, (c0, r0, s))));
+    let mut rows = Vec::with_capacity(FIG7_POINTS);
+    for (k, (sweep, x, at)) in points.enumerate() {
+        rows.push(point(sweep, x, at, trials, seed, k as u64)?);
+        progress();
     }
     Ok(rows)
 }
@@ -201,7 +205,7 @@ fn chart(rows: &[Fig7Row], sweep: &str, title: &str, x_label: &str) -> LineChart
 /// # Errors
 /// [`ExperimentError::Roi`] or [`ExperimentError::Mission`] if a region or a run fails.
 pub fn reproduce(trials: usize, seed: u64) -> Result<Reproduction, ExperimentError> {
-    let rows = fig7_rows(trials, seed)?;
+    let rows = fig7_rows(trials, seed, &mut || {})?;
     let total: usize = rows.iter().map(|r| r.trials).sum();
     let within: usize = rows.iter().map(|r| r.within_upper).sum();
     let mut out = Vec::new();
@@ -250,7 +254,7 @@ mod tests {
 
     #[test]
     fn each_chart_states_what_it_holds_fixed() {
-        let rows = fig7_rows(1, 3).unwrap();
+        let rows = fig7_rows(1, 3, &mut || {}).unwrap();
         for (sweep, held, swept) in [
             ("cells", ["R = 20 robots", "S_r/S_p = 2.5"], "C = "),
             ("robots", ["C = 120 cells", "S_r/S_p = 2.5"], "R = "),

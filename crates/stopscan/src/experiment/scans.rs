@@ -47,7 +47,8 @@ pub struct ScanPairs {
     pub icp_ms: f64,
 }
 
-/// Runs `trials` scan pairs in `domain` ([module docs](self)).
+/// Runs `trials` scan pairs in `domain` ([module docs](self)); `progress` is called after
+/// each.
 ///
 /// # Panics
 /// Never: the simulated lidar's scans are valid.
@@ -59,6 +60,7 @@ pub fn scan_pairs(
     max_shift: f64,
     max_turn: f64,
     seed: u64,
+    progress: &mut dyn FnMut(),
 ) -> ScanPairs {
     let walls = Walls::of(domain);
     let mut rng = ChaCha8Rng::seed_from_u64(seed);
@@ -113,6 +115,7 @@ pub fn scan_pairs(
         degenerate += usize::from(al.degenerate.is_some());
         errors.push(err);
         done += 1;
+        progress();
     }
     errors.sort_by(f64::total_cmp);
     let pct = |q: f64| {
@@ -148,7 +151,7 @@ mod tests {
     #[test]
     fn icp_converges_on_office_scan_pairs_from_a_wrong_guess() {
         let d = crate::generate::office(3, 6, 1).unwrap().domain;
-        let r = scan_pairs(&d, &Lidar::default(), 60, 2.0, 0.3, 10f64.to_radians(), 5);
+        let r = scan_pairs(&d, &Lidar::default(), 60, 2.0, 0.3, 10f64.to_radians(), 5, &mut || {});
         assert_eq!(r.trials, 60);
         assert!(r.converged_share >= 0.9, "{r:?}");
     }

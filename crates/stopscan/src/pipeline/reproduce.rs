@@ -78,11 +78,22 @@ pub fn write_files(
     Ok(files)
 }
 
+/// Which reproduction starts now: `index` (from 0) of `total`.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct ReproduceProgress<'a> {
+    /// Its place, from 0.
+    pub index: usize,
+    /// How many in all.
+    pub total: usize,
+    /// Its ID.
+    pub id: &'a str,
+}
+
 /// Runs the reproduction `id` (`all`: every one of [`crate::experiment::ids`]) with `samples`
 /// Monte Carlo samples and `seed`, writing the files of each into `out` (created if missing)
 /// when given. `data` finds the benchmark folder of `views-benchmarks` when it is run; under
 /// `all`, a failure there skips that reproduction (`skipped` hears why) rather than ending
-/// the others.
+/// the others. `progress` hears each reproduction as it starts.
 ///
 /// # Errors
 /// [`ReproduceError`]: an unknown identifier, a reproduction that fails, missing benchmark
@@ -94,11 +105,14 @@ pub fn reproduce(
     data: &mut dyn FnMut() -> Result<PathBuf, String>,
     out: Option<&Path>,
     skipped: &mut dyn FnMut(&ReproduceError),
+    progress: &mut dyn FnMut(ReproduceProgress),
 ) -> Result<Vec<ReproductionOutput>, ReproduceError> {
     let all = id == "all";
     let ids: Vec<&str> = if all { crate::experiment::ids() } else { vec![id] };
     let mut outs = Vec::new();
-    for id in ids {
+    let total = ids.len();
+    for (index, id) in ids.into_iter().enumerate() {
+        progress(ReproduceProgress { index, total, id });
         let dir = if id == "views-benchmarks" {
             data().map_err(ReproduceError::Data)
         } else {
