@@ -646,6 +646,7 @@ fn a_team_session_refuses_what_it_cannot_take() {
         (start(json!({})), "roi", "missing"),
         (start(json!({"roi": {"robots": 0}})), "roi.robots", "1 to 1024"),
         (start(json!({"roi": {"robots": 2, "cell_size": 0}})), "roi.cell_size", "above 0"),
+        (start(json!({"roi": {"robots": 2, "cell_size": 1e308}})), "roi.cell_size", "at most"),
         (start(json!({"roi": {"robots": 2, "drift": {"speed": 1.5}}})), "cost.speed", "faster"),
         (
             start(json!({"roi": {"robots": 2, "drift": {"sped": 0.5}}})),
@@ -690,7 +691,8 @@ fn a_team_session_refuses_what_it_cannot_take() {
         (scan(1, json!({"frames": [frame]})), "robot", "missing"),
         (scan(1, json!({"robot": 5, "time": 1.0, "frames": [frame]})), "robot", "robots 0 to 1"),
         (scan(1, json!({"robot": 0, "frames": [frame]})), "time", "drifting"),
-        (scan(1, json!({"robot": 0, "time": -1.0, "frames": [frame]})), "time", ">= 0"),
+        (scan(1, json!({"robot": 0, "time": -1.0, "frames": [frame]})), "time", "between 0 and"),
+        (scan(1, json!({"robot": 0, "time": 2e9, "frames": [frame]})), "time", "between 0 and"),
         (scan(1, json!({"robot": 0, "time": 2.0})), "frames", "missing"),
         (scan(1, json!({"robot": 0, "time": 2.0, "frames": []})), "frames", "1 to 99"),
         (

@@ -251,9 +251,17 @@ pub struct Prior {
     pub heading: f64,
 }
 
+/// The heading offsets of the restarts tried when an alignment from the guess is not
+/// convincing (it fell back or did not converge), radians: a large heading error can pair
+/// returns with the wrong walls, and a start a few degrees off may find the right ones.
+const RESTART_TURNS: [f64; 2] = [0.1, -0.1];
+
 /// Aligns `points` (returns in the scanner's frame) to `map`, starting from `guess` (the
 /// scanner's pose by odometry, in the map frame), weighed against odometry's `prior` when
-/// given.
+/// given. When the alignment from the guess falls back or does not converge, it is tried
+/// again from the guess turned by ±0.1 rad (the prior stays on the guess), and the best of
+/// the three is kept: one that did not fall back, then one that converged, then the smallest
+/// residual.
 pub fn align(
     points: &[Point],
     guess: &Pose,
@@ -261,7 +269,32 @@ pub fn align(
     map: &WallMap,
     params: &IcpParams,
 ) -> Alignment {
-    let mut pose = *guess;
+    let first = align_from(points, guess, guess, prior, map, params);
+    if first.fallback.is_none() && first.converged {
+        return first;
+    }
+    let rank = |a: &Alignment| (a.fallback.is_some(), !a.converged, a.rms);
+    let mut best = first;
+    for turn in RESTART_TURNS {
+        let start = Pose { theta: wrap(guess.theta + turn), ..*guess };
+        let a = align_from(points, guess, &start, prior, map, params);
+        if rank(&a).partial_cmp(&rank(&best)) == Some(std::cmp::Ordering::Less) {
+            best = a;
+        }
+    }
+    best
+}
+
+/// [`align`] from `start` (the prior, when given, stays on `guess`).
+fn align_from(
+    points: &[Point],
+    guess: &Pose,
+    start: &Pose,
+    prior: Option<Prior>,
+    map: &WallMap,
+    params: &IcpParams,
+) -> Alignment {
+    let mut pose = *start;
     // The gate starts wide enough for odometry's error at three standard deviations.
     let mut gate = prior.map_or(params.gate_start, |p| {
         params.gate_start.max(3.0 * p.position + 3.0 * p.heading * 10.0).min(3.0)

@@ -41,6 +41,15 @@ const HOME: Cell = [0, 0];
 /// The largest search box side, in cells.
 const MAX_SEARCH_SIDE: i64 = 1 << 20;
 
+/// The largest cell, metres (ten kilometres): goals stay finite in every frame.
+const MAX_CELL_SIZE: f64 = 1e4;
+
+/// The fastest drift, metres per second.
+const MAX_DRIFT_SPEED: f64 = 1e3;
+
+/// The latest team clock, seconds (about 31 years).
+const MAX_TIME: f64 = 1e9;
+
 /// What a robot of the team is doing.
 #[derive(Debug, Clone, Copy, PartialEq)]
 enum Task {
@@ -115,17 +124,25 @@ impl RoiRun {
             ));
         }
         let cell_size = r.cell_size.unwrap_or(1.0);
-        if !(cell_size.is_finite() && cell_size > 0.0) {
+        if !(cell_size > 0.0 && cell_size <= MAX_CELL_SIZE) {
             return Err(ProtocolError::field(
                 "roi.cell_size",
-                format!("must be a finite number of metres above 0, got {}", Num(cell_size)),
+                format!(
+                    "must be above 0 and at most {} metres, got {}",
+                    Num(MAX_CELL_SIZE),
+                    Num(cell_size)
+                ),
             ));
         }
         let (drift_speed, heading_deg) = r.drift.map_or((0.0, 0.0), |d| (d.speed, d.heading_deg));
-        if !(drift_speed.is_finite() && drift_speed >= 0.0) {
+        if !(0.0..=MAX_DRIFT_SPEED).contains(&drift_speed) {
             return Err(ProtocolError::field(
                 "roi.drift.speed",
-                format!("must be a finite number >= 0, got {}", Num(drift_speed)),
+                format!(
+                    "must be at least 0 and at most {} m/s, got {}",
+                    Num(MAX_DRIFT_SPEED),
+                    Num(drift_speed)
+                ),
             ));
         }
         if !heading_deg.is_finite() {
@@ -218,10 +235,10 @@ impl RoiRun {
         };
         super::session::check_pose("pose", &pose)?;
         let clock = match time {
-            Some(t) if !(t.is_finite() && t >= 0.0) => {
+            Some(t) if !(0.0..=MAX_TIME).contains(&t) => {
                 return Err(ProtocolError::field(
                     "time",
-                    format!("must be a finite number of seconds >= 0, got {}", Num(t)),
+                    format!("must be between 0 and {} seconds, got {}", Num(MAX_TIME), Num(t)),
                 ));
             }
             Some(t) if t < m.clock => {
