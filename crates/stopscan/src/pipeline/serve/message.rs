@@ -54,6 +54,17 @@ pub enum Family {
     Roi,
 }
 
+impl Family {
+    /// The family's name in the protocol.
+    pub fn name(self) -> &'static str {
+        match self {
+            Self::Polygon => "polygon",
+            Self::Corner => "corner",
+            Self::Roi => "roi",
+        }
+    }
+}
+
 /// The cost model of a session, as sent.
 #[derive(Debug, Clone, Copy, PartialEq, Deserialize)]
 #[serde(deny_unknown_fields)]
@@ -219,6 +230,30 @@ pub struct ScanIn {
     /// The team's clock, seconds since the start (roi).
     #[serde(default)]
     pub time: Option<f64>,
+}
+
+impl ScanIn {
+    /// Refuses a reading of another family than `family`'s: `scan` (polygon), `edge` (corner)
+    /// or `frames` (roi).
+    ///
+    /// # Errors
+    /// [`ProtocolError`] naming the reading and the family it is for.
+    pub fn readings_for(&self, family: Family) -> Result<(), ProtocolError> {
+        let readings = [
+            ("scan", self.scan.is_some(), Family::Polygon),
+            ("edge", self.edge.is_some(), Family::Corner),
+            ("frames", self.frames.is_some(), Family::Roi),
+        ];
+        for (field, present, of) in readings {
+            if present && of != family {
+                return Err(ProtocolError::field(
+                    field,
+                    format!("is for the {} family", of.name()),
+                ));
+            }
+        }
+        Ok(())
+    }
 }
 
 /// `arrived`, `found` or `stop`: where the robot stands.

@@ -21,7 +21,7 @@
 //! static one does not (the server then keeps the time model's clock).
 
 use super::message::{
-    DoneReason, FailedIn, Order, OrderKind, ProtocolError, Request, RoiIn, ScanIn, StartIn,
+    DoneReason, FailedIn, Family, Order, OrderKind, ProtocolError, Request, RoiIn, ScanIn, StartIn,
     Summary, TeamSummary,
 };
 use super::session::Odometry;
@@ -439,15 +439,7 @@ impl RoiRun {
 
 /// A team scan's frames, checked, as the observation of the cell the robot stands on.
 fn observation(s: &ScanIn, at: Cell) -> Result<GridObservation, ProtocolError> {
-    if s.scan.is_some() {
-        return Err(ProtocolError::field(
-            "scan",
-            "is for the polygon family; the roi family reports `frames`",
-        ));
-    }
-    if s.edge.is_some() {
-        return Err(ProtocolError::field("edge", "is for the corner family"));
-    }
+    s.readings_for(Family::Roi)?;
     let Some(frames) = &s.frames else {
         return Err(ProtocolError::field(
             "frames",

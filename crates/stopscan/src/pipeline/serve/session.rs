@@ -333,9 +333,10 @@ impl Run {
         ];
         for (field, present, family) in parts {
             if present && family != s.family {
-                let name = serde_json::to_value(family).expect("a name");
-                let name = name.as_str().unwrap_or_default();
-                return Err(ProtocolError::field(field, format!("is for the {name} family")));
+                return Err(ProtocolError::field(
+                    field,
+                    format!("is for the {} family", family.name()),
+                ));
             }
         }
         match (s.family, &s.corner, &s.roi) {
@@ -542,12 +543,7 @@ impl PolygonRun {
     }
 
     fn scanned(&mut self, s: &ScanIn) -> Result<(Action<Point>, Option<Localised>), ProtocolError> {
-        if s.edge.is_some() {
-            return Err(ProtocolError::field("edge", "is for the corner family"));
-        }
-        if s.frames.is_some() {
-            return Err(ProtocolError::field("frames", "is for the roi family"));
-        }
+        s.readings_for(Family::Polygon)?;
         let Some(scan) = &s.scan else {
             return Err(ProtocolError::field(
                 "scan",
@@ -635,15 +631,7 @@ impl CornerRun {
     }
 
     fn scanned(&mut self, s: &ScanIn) -> Result<Action<Point>, ProtocolError> {
-        if s.scan.is_some() {
-            return Err(ProtocolError::field(
-                "scan",
-                "is for the polygon family; the corner family reports `edge`",
-            ));
-        }
-        if s.frames.is_some() {
-            return Err(ProtocolError::field("frames", "is for the roi family"));
-        }
+        s.readings_for(Family::Corner)?;
         let observation = match s.edge {
             None => CornerObservation::Hidden,
             Some(theta) if theta.is_finite() && theta >= 0.0 => CornerObservation::Seen { theta },
