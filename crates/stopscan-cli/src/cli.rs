@@ -7,7 +7,7 @@ use clap::{Args, Parser, Subcommand, ValueEnum};
 /// Where a robot should stop and scan when every scan costs time.
 ///
 /// With no command, runs the main job: the paper's exploration of the built-in office floor,
-/// writing `stopscan-out/run.json` and `stopscan-out/scene.svg`.
+/// writing `stopscan-out/run.json`, `stopscan-out/scene.svg` and `stopscan-out/report.html`.
 #[derive(Debug, Parser)]
 #[command(name = "stopscan", version, about, long_about = None)]
 pub(crate) struct Cli {
@@ -385,6 +385,11 @@ pub(crate) struct ExploreArgs {
     /// Write the scene (domain, regions, path, numbered scans) as SVG.
     #[arg(long)]
     pub(crate) svg: Option<PathBuf>,
+    /// Write report.html here: one self-contained page (no network) that replays the run
+    /// step by step in the browser (each scan's region, the path, the frontiers left open)
+    /// beside the metrics, the time's terms, the bounds and the certified ratio.
+    #[arg(long)]
+    pub(crate) report: Option<PathBuf>,
     /// Limit the sensor to R metres (the paper's restricted visibility polygons); the bound
     /// becomes Lemma 4's and the lower bound area / (πR²).
     #[arg(long, allow_negative_numbers = true)]
@@ -501,8 +506,8 @@ pub(crate) struct RoiArgs {
     #[arg(long, conflicts_with = "resume")]
     pub(crate) state: Option<PathBuf>,
     /// Carry on with the mission journaled in STATE (and keep journaling there); the mission's
-    /// settings, and its --trace, come from STATE, so only --out, --svg, --trace and --format
-    /// may be given with it.
+    /// settings, and its --trace, come from STATE, so only --out, --svg, --report, --trace and
+    /// --format may be given with it.
     #[arg(long, value_name = "STATE")]
     pub(crate) resume: Option<PathBuf>,
     /// Side of a cell, metres (for polygons, the grid's cell; otherwise the scale).
@@ -549,6 +554,11 @@ pub(crate) struct RoiArgs {
     /// Where to write the SVG replay (default: --out with .svg).
     #[arg(long)]
     pub(crate) svg: Option<PathBuf>,
+    /// Write report.html here: one self-contained page (no network) that replays the mission
+    /// in the browser, the robots moving and the cells being marked, beside the metrics and
+    /// bounds.
+    #[arg(long)]
+    pub(crate) report: Option<PathBuf>,
 }
 
 #[derive(Debug, Clone, Copy, PartialEq, Eq, ValueEnum)]

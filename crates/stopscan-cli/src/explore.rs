@@ -77,12 +77,24 @@ pub(crate) fn main_job(g: &Global) -> anyhow::Result<()> {
     drop(spinner);
     let dir = g.out.clone().unwrap_or_else(|| PathBuf::from("stopscan-out"));
     atomic::ensure_dir(&dir)?;
-    finish(g, &o, &dir.join("run.json"), Some(&dir.join("scene.svg")))
+    finish(
+        g,
+        &o,
+        &dir.join("run.json"),
+        Some(&dir.join("scene.svg")),
+        Some(&dir.join("report.html")),
+    )
 }
 
 pub(crate) fn run(a: &ExploreArgs, g: &Global) -> anyhow::Result<()> {
     let options = options(a, g)?;
     if a.env.is_dir() {
+        if a.report.is_some() {
+            anyhow::bail!(
+                "--report replays one run; {} is a folder (explore one of its files with --report)",
+                a.env.display()
+            );
+        }
         return sweep(a, g, &options);
     }
     if a.shard.is_some() {
@@ -103,7 +115,7 @@ pub(crate) fn run(a: &ExploreArgs, g: &Global) -> anyhow::Result<()> {
     })?;
     drop(spinner);
     let out = g.out.clone().unwrap_or_else(|| PathBuf::from("run.json"));
-    finish(g, &o, &out, a.svg.as_deref())
+    finish(g, &o, &out, a.svg.as_deref(), a.report.as_deref())
 }
 
 /// Writes the record (and the scene), prints the summary, and fails if the run was ended
@@ -113,10 +125,14 @@ fn finish(
     o: &Exploration,
     json_path: &Path,
     svg_path: Option<&Path>,
+    report_path: Option<&Path>,
 ) -> anyhow::Result<()> {
     atomic::write_json(json_path, &o.record)?;
     if let Some(p) = svg_path {
         atomic::write_bytes(p, o.svg.as_bytes())?;
+    }
+    if let Some(p) = report_path {
+        atomic::write_bytes(p, o.report().as_bytes())?;
     }
     let stdout = std::io::stdout();
     let mut w = stdout.lock();
@@ -125,7 +141,7 @@ fn finish(
     } else {
         summary(&mut w, &o.record)?;
         writeln!(w, "wrote {}", json_path.display())?;
-        if let Some(p) = svg_path {
+        for p in [svg_path, report_path].into_iter().flatten() {
             writeln!(w, "wrote {}", p.display())?;
         }
     }

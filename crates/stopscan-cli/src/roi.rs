@@ -172,6 +172,7 @@ fn fresh(a: &RoiArgs, g: &Global) -> anyhow::Result<MissionRun> {
         recording: if a.no_paths { Recording::NONE } else { Recording::PATHS },
         seed: g.seed,
         svg: a.svg.clone().unwrap_or_else(|| out.with_extension("svg")),
+        report: a.report.clone(),
         out,
         trace: a.trace.clone(),
     };
@@ -185,7 +186,12 @@ pub(crate) fn run(a: &RoiArgs, g: &Global) -> anyhow::Result<()> {
     let (mission, state) = match &a.resume {
         Some(p) => {
             let mut f = MissionState::read(p)?;
-            f.redirect(g.out.as_deref(), a.svg.as_deref(), a.trace.as_deref())?;
+            f.redirect(
+                g.out.as_deref(),
+                a.svg.as_deref(),
+                a.report.as_deref(),
+                a.trace.as_deref(),
+            )?;
             (f.resume()?, Some(p.clone()))
         }
         None => (fresh(a, g)?, a.state.clone()),
@@ -202,6 +208,9 @@ pub(crate) fn run(a: &RoiArgs, g: &Global) -> anyhow::Result<()> {
         summary(&mut w, record)?;
         writeln!(w, "wrote {}", end.out.display())?;
         writeln!(w, "wrote {}", end.svg.display())?;
+        if let Some(p) = &end.report {
+            writeln!(w, "wrote {}", p.display())?;
+        }
         if let Some(p) = &state {
             writeln!(w, "wrote {}", p.display())?;
         }

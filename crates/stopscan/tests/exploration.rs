@@ -326,3 +326,55 @@ fn the_shared_random_polygon_with_holes() {
     let start = env.queries[0];
     check(&Instance { domain: env.domain, start }, "env_100");
 }
+
+/// The replay's frontier history (what `report.html` highlights at each step) is, at every
+/// step, what `open_windows` counts for the scans taken so far, and its tallies add up to the
+/// run's: with and without a range limit, for several strategies and instances.
+#[test]
+fn frontier_history_is_open_windows_at_every_step() {
+    use stopscan::algorithm::cover::frontier_history;
+    let cases = [
+        (office(3, 6, 1).unwrap(), None),
+        (pillar_forest(30.0, 20.0, 9, 3).unwrap(), None),
+        (spiral(5).unwrap(), Some(4.0)),
+        (office(2, 4, 7).unwrap(), Some(3.0)),
+    ];
+    for (inst, range) in cases {
+        for name in ["depth_first", "nearest_frontier"] {
+            let name =
+                if range.is_some() && name == "depth_first" { "range_limited" } else { name };
+            let world = PolygonWorld::with_range(inst.domain.clone(), range).unwrap();
+            let mut s = by_name(name, &CostModel::default()).unwrap();
+            let r = run(&world, inst.start, &CostModel::default(), s.as_mut(), &mut NoObserver)
+                .unwrap();
+            let d = world.domain();
+            let inside = |p| d.locate(p) == Location::Interior;
+            let regions: Vec<_> = r.scans.iter().map(|s| s.region.clone()).collect();
+            let history = frontier_history(&regions, inside);
+            let mut opened = 0;
+            for step in 1..=regions.len() {
+                let at_step: usize = history
+                    .iter()
+                    .filter(|h| h.scan < step)
+                    .filter_map(|h| h.open.iter().rev().find(|(s, _)| *s <= step))
+                    .map(|(_, open)| open.len())
+                    .sum();
+                let want = open_windows(&regions[..step], inside);
+                assert_eq!(at_step, want, "{name} R={range:?}: step {step}");
+                opened = opened.max(at_step);
+            }
+            assert!(opened > 0, "{name}: some frontier was open at some step");
+            // Entries come in step order, first when the frontier's scan is taken.
+            for h in &history {
+                assert_eq!(h.open[0].0, h.scan + 1);
+                assert!(h.open.windows(2).all(|w| w[0].0 < w[1].0 && w[0].1 != w[1].1));
+            }
+            // Each scan's tally counts it, and the last is the run's.
+            assert_eq!(r.scan_tallies.len(), regions.len());
+            for (k, t) in r.scan_tallies.iter().enumerate() {
+                assert_eq!(t.scans, k as u64 + 1);
+            }
+            assert_eq!(r.scan_tallies.last().unwrap().scans, r.tally.scans);
+        }
+    }
+}

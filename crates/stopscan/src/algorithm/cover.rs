@@ -236,13 +236,84 @@ pub fn open_windows(regions: &[VisibilityRegion], inside: impl Fn(Point) -> bool
 pub fn open_window_points(regions: &[VisibilityRegion]) -> Vec<Point> {
     let mut out = Vec::new();
     for_each_window(regions, |a, b, tol, iv| {
-        let (dx, dy) = (b[0] - a[0], b[1] - a[1]);
-        let e = 1e-6_f64.max(4.0 * rounding(magnitude(&[a, b])) / dx.hypot(dy));
-        for [g0, g1] in gaps(iv, tol) {
-            let t = 0.5 * (g0 + g1);
-            out.push([a[0] + t * dx + e * dy, a[1] + t * dy - e * dx]);
-        }
+        out.extend(gaps(iv, tol).map(|g| gap_probe(a, b, g)));
     });
+    out
+}
+
+/// The probe of the uncovered part `gap` of the frontier `a b` (its region to the left): a
+/// millionth of the frontier's length beyond its middle, and more than the coordinates'
+/// [`rounding`].
+fn gap_probe(a: Point, b: Point, [g0, g1]: [f64; 2]) -> Point {
+    let (dx, dy) = (b[0] - a[0], b[1] - a[1]);
+    let e = 1e-6_f64.max(4.0 * rounding(magnitude(&[a, b])) / dx.hypot(dy));
+    let t = 0.5 * (g0 + g1);
+    [a[0] + t * dx + e * dy, a[1] + t * dy - e * dx]
+}
+
+/// One frontier of a sequence of scans, and how its open parts shrank as the scans after it
+/// were taken: what a replay highlights as "left open" at each step.
+#[derive(Debug, Clone, PartialEq)]
+pub struct FrontierHistory {
+    /// The index of the region (scan) the frontier belongs to.
+    pub scan: usize,
+    /// Its ends, counter-clockwise along that region's boundary.
+    pub from: Point,
+    /// See `from`.
+    pub to: Point,
+    /// A window (an occluding edge), not a range chord.
+    pub window: bool,
+    /// `(step, open)`, by increasing step: once `step` scans have been taken (and until the
+    /// next entry's step), the parts `open` of the frontier (parameter intervals along
+    /// `from → to`) are what no scan taken so far covers, counted as [`open_windows`] counts
+    /// them. The first entry's step is `scan + 1`; an empty `open` means closed.
+    pub open: Vec<(usize, Intervals)>,
+}
+
+/// The history of every frontier of `regions` taken in order ([`FrontierHistory`]): at each
+/// step `s`, the frontiers of the first `s` regions and their parts that none of the other
+/// first `s` regions covers, whose probe satisfies `inside`. At the last step they are exactly
+/// the parts [`open_windows`] counts.
+///
+/// # Complexity
+/// As [`open_windows`], plus a merge per region that covers part of a frontier.
+pub fn frontier_history(
+    regions: &[VisibilityRegion],
+    inside: impl Fn(Point) -> bool,
+) -> Vec<FrontierHistory> {
+    let boxes: Vec<[Point; 2]> = regions.iter().map(|r| bounds_of(&r.polygon)).collect();
+    let mut out = Vec::new();
+    let mut part = Vec::new();
+    for (i, r) in regions.iter().enumerate() {
+        for w in r.frontiers() {
+            let (a, b) = w.ends();
+            let tol = tolerance(r.viewpoint, w);
+            let open_now = |iv: &Intervals| -> Intervals {
+                gaps(iv, tol).filter(|&g| inside(gap_probe(a, b, g))).collect()
+            };
+            let mut iv = Vec::new();
+            for (j, o) in regions.iter().enumerate().take(i) {
+                side_cover(a, b, &o.polygon, boxes[j], &mut iv);
+            }
+            merge(&mut iv);
+            let mut open = vec![(i + 1, open_now(&iv))];
+            for (j, o) in regions.iter().enumerate().skip(i + 1) {
+                part.clear();
+                side_cover(a, b, &o.polygon, boxes[j], &mut part);
+                if part.is_empty() {
+                    continue;
+                }
+                iv.extend_from_slice(&part);
+                merge(&mut iv);
+                let now = open_now(&iv);
+                if open.last().is_some_and(|(_, before)| *before != now) {
+                    open.push((j + 1, now));
+                }
+            }
+            let window = matches!(w, BoundaryPiece::Window { .. });
+            out.push(FrontierHistory { scan: i, from: a, to: b, window, open });
+        }
+    }
     out
 }
 

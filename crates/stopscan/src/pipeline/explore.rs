@@ -262,10 +262,20 @@ pub struct Exploration {
     pub record: RunRecord,
     /// The scene: domain, regions seen, path and numbered scans, as SVG.
     pub svg: String,
+    /// What the browser replay is drawn from ([`Exploration::report`]).
+    pub replay: crate::render::PolygonReplay,
     /// Why the run was ended before the strategy was done (in the input's coordinates); the
     /// record is then the run so far, and not measured against the greedy reference or the
     /// optimum.
     pub failure: Option<PolygonSimError>,
+}
+
+impl Exploration {
+    /// `report.html`: the run replayed step by step in the browser, beside its metrics,
+    /// bounds and certified ratio ([`crate::render::polygon_report`]).
+    pub fn report(&self) -> String {
+        crate::render::polygon_report(&self.replay, &self.record)
+    }
 }
 
 /// Why an exploration (or a sweep) could not run.
@@ -541,15 +551,7 @@ pub fn explore(
         progress("offline: greedy reference in the configuration space");
         refs.greedy = Some(crate::offline::polygon::reach::greedy(&world, start));
     }
-    let regions: Vec<_> = run.scans.iter().map(|s| s.region.clone()).collect();
-    let cspace: Option<Vec<Vec<Vec<Point>>>> =
-        world.reach().map(|r| vec![r.domain().rings().to_vec()]);
-    let svg = crate::render::exploration_svg(
-        &env.domain,
-        &regions,
-        &run.path,
-        crate::render::SceneExtras { cspace: cspace.as_deref() },
-    );
+    let (svg, replay) = pictures(env, &world, &run);
     let mut record = RunRecord::polygon(name, &world, &o.strategy, &o.cost, &run, &refs, o.seed);
     record.sensor = SensorInfo::of(&setup.sensor, &strategy.skipped());
     // A footprint makes the run partial, so what it saw is at hand.
@@ -564,7 +566,33 @@ pub fn explore(
     }
     let mut record = record.in_frame(&frame);
     record.error = failure.as_ref().map(ToString::to_string);
-    Ok(Exploration { record, svg, failure })
+    Ok(Exploration { record, svg, replay, failure })
+}
+
+/// The scene (SVG) and the browser replay's data of `run` in `world` (on `env`'s domain).
+fn pictures(
+    env: &Environment,
+    world: &PolygonWorld,
+    run: &crate::sim::polygon::PolygonRun,
+) -> (String, crate::render::PolygonReplay) {
+    let regions: Vec<_> = run.scans.iter().map(|s| s.region.clone()).collect();
+    let cspace: Option<Vec<Vec<Vec<Point>>>> =
+        world.reach().map(|r| vec![r.domain().rings().to_vec()]);
+    let svg = crate::render::exploration_svg(
+        &env.domain,
+        &regions,
+        &run.path,
+        crate::render::SceneExtras { cspace: cspace.as_deref() },
+    );
+    let replay = crate::render::PolygonReplay {
+        domain: env.domain.clone(),
+        cspace,
+        regions,
+        path: run.path.clone(),
+        steps: run.scan_tallies.clone(),
+        total: run.tally,
+    };
+    (svg, replay)
 }
 
 /// A run as the simulator ended it: the run (on the ground truth for raw scans), why it was

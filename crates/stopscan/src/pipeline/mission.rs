@@ -105,6 +105,9 @@ pub struct MissionState {
     pub out: PathBuf,
     /// Where the SVG replay goes.
     pub svg: PathBuf,
+    /// Where the browser replay (`report.html`) goes, if anywhere.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub report: Option<PathBuf>,
     /// The event trace, if the mission writes one.
     pub trace: Option<PathBuf>,
     /// The trace's length in bytes when this state was taken: a resumed mission cuts the
@@ -149,6 +152,8 @@ pub struct MissionSpec {
     pub out: PathBuf,
     /// Where the SVG replay goes.
     pub svg: PathBuf,
+    /// Where the browser replay (`report.html`) goes, if anywhere.
+    pub report: Option<PathBuf>,
     /// Where the event trace goes, if anywhere.
     pub trace: Option<PathBuf>,
 }
@@ -303,7 +308,7 @@ impl MissionState {
     }
 
     /// Sends a resumed mission's outputs elsewhere: `out` (and the replay beside it, with
-    /// `.svg`, unless `svg` is given), `svg`; a `trace` other than the recorded one replaces it
+    /// `.svg`, unless `svg` is given), `svg`, `report`; a `trace` other than the recorded one replaces it
     /// and starts empty. Both outputs are checked ([`atomic::check_file`]).
     ///
     /// # Errors
@@ -312,6 +317,7 @@ impl MissionState {
         &mut self,
         out: Option<&Path>,
         svg: Option<&Path>,
+        report: Option<&Path>,
         trace: Option<&Path>,
     ) -> Result<(), WriteError> {
         if let Some(o) = out {
@@ -320,8 +326,14 @@ impl MissionState {
         } else if let Some(s) = svg {
             self.svg = absolute(s);
         }
+        if let Some(r) = report {
+            self.report = Some(absolute(r));
+        }
         atomic::check_file(&self.out)?;
         atomic::check_file(&self.svg)?;
+        if let Some(r) = &self.report {
+            atomic::check_file(r)?;
+        }
         if let Some(t) = trace {
             let t = absolute(t);
             if self.trace.as_ref() != Some(&t) {
@@ -371,6 +383,8 @@ pub struct MissionOutcome {
     pub out: PathBuf,
     /// Where the replay was written.
     pub svg: PathBuf,
+    /// Where the browser replay was written, if anywhere.
+    pub report: Option<PathBuf>,
 }
 
 /// Counts the bytes written through it (the trace's length, for the state file).
@@ -439,6 +453,7 @@ impl MissionRun {
             seed: spec.seed,
             out: absolute(&spec.out),
             svg: absolute(&spec.svg),
+            report: spec.report.as_deref().map(absolute),
             trace: spec.trace.as_deref().map(absolute),
             trace_len: 0,
             mission,
@@ -521,7 +536,16 @@ impl MissionRun {
         let mapped = file.mission.plan.map.then(|| file.mission.marks.positive());
         let svg = crate::render::roi_svg(world.roi(), mapped.as_deref(), &record);
         atomic::write_bytes(&file.svg, svg.as_bytes())?;
-        Ok(MissionOutcome { record, out: file.out.clone(), svg: file.svg.clone() })
+        if let Some(r) = &file.report {
+            let html = crate::render::roi_report(world.roi(), mapped.as_deref(), &record);
+            atomic::write_bytes(r, html.as_bytes())?;
+        }
+        Ok(MissionOutcome {
+            record,
+            out: file.out.clone(),
+            svg: file.svg.clone(),
+            report: file.report.clone(),
+        })
     }
 }
 
@@ -550,6 +574,7 @@ mod tests {
             seed: 3,
             out: dir.join("run.json"),
             svg: dir.join("run.svg"),
+            report: None,
             trace: Some(dir.join("events.jsonl")),
         }
     }

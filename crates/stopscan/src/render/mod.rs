@@ -12,6 +12,8 @@
 //! - `labels`: where an exploration's scan numbers go (none overlaps another, a marker or
 //!   the legend);
 //! - `roi`: the animated SVG replay of a grid mission ([`roi_svg`]);
+//! - `report`: `report.html`, the self-contained browser replay of an exploration
+//!   ([`polygon_report`]) or a grid mission ([`roi_report`]);
 //! - `glyphs`: bitmap text drawn without clipped glyphs (plotters' font stack).
 
 use std::path::PathBuf;
@@ -21,6 +23,7 @@ mod glyphs;
 mod labels;
 mod layout;
 mod policy;
+mod report;
 mod roi;
 mod scene;
 
@@ -29,6 +32,7 @@ pub use layout::{
     ChartLayout, LEGEND_CLEARANCE, PixelBox, PixelSize, Ticks, legend_corner, tick_label, ticks,
 };
 pub use policy::write_policy_image;
+pub use report::{MAX_REPORTED_CELLS, PolygonReplay, polygon_report, roi_report};
 pub use roi::roi_svg;
 pub use scene::{SceneExtras, exploration_svg, scene_svg};
 

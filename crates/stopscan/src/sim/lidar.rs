@@ -353,6 +353,7 @@ impl<'a> Robot<'a> {
                     path: vec![start],
                     scans: Vec::new(),
                     scan_times: Vec::new(),
+                    scan_tallies: Vec::new(),
                     interrupted: false,
                 },
                 believed_path: vec![start],
@@ -409,6 +410,7 @@ impl<'a> Robot<'a> {
         self.sim.set_odometry(belief);
         self.out.truth.scan_times.push(cost.price(&self.tally).total());
         self.tally.scans += 1;
+        self.out.truth.scan_tallies.push(self.tally);
         let truth = self.sim.truth();
         let exact = self.world.scan(truth.at()).expect("the true pose is in the free space");
         self.out.truth.scans.push(exact);

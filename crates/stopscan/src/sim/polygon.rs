@@ -36,6 +36,9 @@ pub struct PolygonRun {
     pub scans: Vec<PolygonObservation>,
     /// When each scan began (seconds since the start, under the cost model).
     pub scan_times: Vec<f64>,
+    /// The tally as each scan was taken, that scan counted.
+    #[serde(default)]
+    pub scan_tallies: Vec<Tally>,
     /// Whether an observer stopped the run before the strategy was done.
     pub interrupted: bool,
 }
@@ -130,6 +133,7 @@ pub fn run(
         path: r.path,
         scans: r.observations,
         scan_times: r.scan_times,
+        scan_tallies: r.scan_tallies,
         interrupted: flow == Ok(Flow::Interrupted),
     };
     match flow {

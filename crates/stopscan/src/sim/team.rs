@@ -227,6 +227,9 @@ pub struct Track<P, O> {
     pub scan_times: Vec<f64>,
     /// Where each of its scans was taken, when the team records paths.
     pub scan_places: Vec<P>,
+    /// Its tally as each scan was taken (that scan counted), when the team records paths.
+    #[serde(default)]
+    pub scan_tallies: Vec<Tally>,
     /// What each of its scans returned (kept when the team records observations).
     pub observations: Vec<O>,
 }
@@ -362,6 +365,7 @@ impl<P: Clone + PartialEq + Debug + Spot, O: Clone> Team<P, O> {
                 path: vec![s],
                 scan_times: Vec::new(),
                 scan_places: Vec::new(),
+                scan_tallies: Vec::new(),
                 observations: Vec::new(),
             })
             .collect();
@@ -501,6 +505,7 @@ impl<P: Clone + PartialEq + Debug + Spot, O: Clone> Team<P, O> {
                     r.scan_times.push(r.clock);
                     if self.recording.paths {
                         r.scan_places.push(r.at.clone());
+                        r.scan_tallies.push(r.tally);
                     }
                     r.clock += cost.scan_time;
                     stop |= observer.on_scan(i, &r.at, &obs).is_break();
