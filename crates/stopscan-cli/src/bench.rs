@@ -336,6 +336,7 @@ fn bench_serve(a: &BenchArgs, g: &Global) -> anyhow::Result<()> {
         out: dir.join(if trace { "a.json" } else { "b.json" }),
         svg: dir.join(if trace { "a.svg" } else { "b.svg" }),
         report: None,
+        mcap: None,
         trace: None,
     };
     let roi = |journal: bool| -> anyhow::Result<f64> {

@@ -156,6 +156,12 @@ pub(crate) struct ServeArgs {
     /// The most scans a session may take; then it is done with reason "limit".
     #[arg(long, default_value_t = stopscan::sim::lidar::MAX_SCANS, value_parser = clap::value_parser!(u64).range(1..))]
     pub(crate) max_scans: u64,
+    /// When the session ends, write it here as an MCAP recording for Foxglove: every pose
+    /// the robot reported and its localisation (transforms), every laser scan, every goal,
+    /// and every step in words. With --resume, the recording holds the whole session (after
+    /// a crash, `serve --resume JOURNAL --mcap FILE < /dev/null` writes it).
+    #[arg(long)]
+    pub(crate) mcap: Option<PathBuf>,
 }
 
 #[derive(Debug, Subcommand)]
@@ -390,6 +396,12 @@ pub(crate) struct ExploreArgs {
     /// beside the metrics, the time's terms, the bounds and the certified ratio.
     #[arg(long)]
     pub(crate) report: Option<PathBuf>,
+    /// Write an MCAP recording of the run here, for Foxglove (JSON messages with Foxglove's
+    /// schemas: the map, each scan's region, the frontiers open, the path, the robot's
+    /// transforms, the raw laser scans with --sensor lidar, a log; the cost model, seed and
+    /// version as metadata).
+    #[arg(long)]
+    pub(crate) mcap: Option<PathBuf>,
     /// Limit the sensor to R metres (the paper's restricted visibility polygons); the bound
     /// becomes Lemma 4's and the lower bound area / (πR²).
     #[arg(long, allow_negative_numbers = true)]
@@ -506,8 +518,8 @@ pub(crate) struct RoiArgs {
     #[arg(long, conflicts_with = "resume")]
     pub(crate) state: Option<PathBuf>,
     /// Carry on with the mission journaled in STATE (and keep journaling there); the mission's
-    /// settings, and its --trace, come from STATE, so only --out, --svg, --report, --trace and
-    /// --format may be given with it.
+    /// settings, and its --trace, come from STATE, so only --out, --svg, --report, --mcap,
+    /// --trace and --format may be given with it.
     #[arg(long, value_name = "STATE")]
     pub(crate) resume: Option<PathBuf>,
     /// Side of a cell, metres (for polygons, the grid's cell; otherwise the scale).
@@ -559,6 +571,11 @@ pub(crate) struct RoiArgs {
     /// bounds.
     #[arg(long)]
     pub(crate) report: Option<PathBuf>,
+    /// Write an MCAP recording of the mission here, for Foxglove (JSON messages with
+    /// Foxglove's schemas: the region, the cells as they are first reached, each robot's
+    /// transform, the flights, a log; the cost model, seed and version as metadata).
+    #[arg(long)]
+    pub(crate) mcap: Option<PathBuf>,
 }
 
 #[derive(Debug, Clone, Copy, PartialEq, Eq, ValueEnum)]

@@ -83,17 +83,20 @@ pub(crate) fn main_job(g: &Global) -> anyhow::Result<()> {
         &dir.join("run.json"),
         Some(&dir.join("scene.svg")),
         Some(&dir.join("report.html")),
+        None,
     )
 }
 
 pub(crate) fn run(a: &ExploreArgs, g: &Global) -> anyhow::Result<()> {
     let options = options(a, g)?;
     if a.env.is_dir() {
-        if a.report.is_some() {
-            anyhow::bail!(
-                "--report replays one run; {} is a folder (explore one of its files with --report)",
-                a.env.display()
-            );
+        for (flag, given) in [("--report", a.report.is_some()), ("--mcap", a.mcap.is_some())] {
+            if given {
+                anyhow::bail!(
+                    "{flag} records one run; {} is a folder (explore one of its files with {flag})",
+                    a.env.display()
+                );
+            }
         }
         return sweep(a, g, &options);
     }
@@ -115,7 +118,7 @@ pub(crate) fn run(a: &ExploreArgs, g: &Global) -> anyhow::Result<()> {
     })?;
     drop(spinner);
     let out = g.out.clone().unwrap_or_else(|| PathBuf::from("run.json"));
-    finish(g, &o, &out, a.svg.as_deref(), a.report.as_deref())
+    finish(g, &o, &out, a.svg.as_deref(), a.report.as_deref(), a.mcap.as_deref())
 }
 
 /// Writes the record (and the scene), prints the summary, and fails if the run was ended
@@ -126,6 +129,7 @@ fn finish(
     json_path: &Path,
     svg_path: Option<&Path>,
     report_path: Option<&Path>,
+    mcap_path: Option<&Path>,
 ) -> anyhow::Result<()> {
     atomic::write_json(json_path, &o.record)?;
     if let Some(p) = svg_path {
@@ -134,6 +138,9 @@ fn finish(
     if let Some(p) = report_path {
         atomic::write_bytes(p, o.report().as_bytes())?;
     }
+    if let Some(p) = mcap_path {
+        atomic::write_bytes(p, &o.mcap()?)?;
+    }
     let stdout = std::io::stdout();
     let mut w = stdout.lock();
     if g.format == Format::Json {
@@ -141,7 +148,7 @@ fn finish(
     } else {
         summary(&mut w, &o.record)?;
         writeln!(w, "wrote {}", json_path.display())?;
-        for p in [svg_path, report_path].into_iter().flatten() {
+        for p in [svg_path, report_path, mcap_path].into_iter().flatten() {
             writeln!(w, "wrote {}", p.display())?;
         }
     }

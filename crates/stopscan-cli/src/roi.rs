@@ -173,6 +173,7 @@ fn fresh(a: &RoiArgs, g: &Global) -> anyhow::Result<MissionRun> {
         seed: g.seed,
         svg: a.svg.clone().unwrap_or_else(|| out.with_extension("svg")),
         report: a.report.clone(),
+        mcap: a.mcap.clone(),
         out,
         trace: a.trace.clone(),
     };
@@ -190,6 +191,7 @@ pub(crate) fn run(a: &RoiArgs, g: &Global) -> anyhow::Result<()> {
                 g.out.as_deref(),
                 a.svg.as_deref(),
                 a.report.as_deref(),
+                a.mcap.as_deref(),
                 a.trace.as_deref(),
             )?;
             (f.resume()?, Some(p.clone()))
@@ -208,7 +210,7 @@ pub(crate) fn run(a: &RoiArgs, g: &Global) -> anyhow::Result<()> {
         summary(&mut w, record)?;
         writeln!(w, "wrote {}", end.out.display())?;
         writeln!(w, "wrote {}", end.svg.display())?;
-        if let Some(p) = &end.report {
+        for p in [&end.report, &end.mcap].into_iter().flatten() {
             writeln!(w, "wrote {}", p.display())?;
         }
         if let Some(p) = &state {

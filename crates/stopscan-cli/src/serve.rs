@@ -18,7 +18,7 @@ use stopscan::pipeline::serve::{ServeError, ServeOptions, Server, TransportError
 use crate::cli::{Global, ServeArgs};
 
 pub(crate) fn run(a: &ServeArgs, _g: &Global) -> anyhow::Result<()> {
-    let options = ServeOptions { max_scans: a.max_scans, fsync: a.fsync };
+    let options = ServeOptions { max_scans: a.max_scans, fsync: a.fsync, record: a.mcap.is_some() };
     let mut server = match (&a.journal, &a.resume) {
         (Some(j), None) => Server::with_journal(j, options)?,
         (None, Some(r)) => {
@@ -35,11 +35,23 @@ pub(crate) fn run(a: &ServeArgs, _g: &Global) -> anyhow::Result<()> {
     };
     let Some(addr) = &a.listen else {
         let stdin = std::io::stdin();
-        return Ok(serve_lines(&mut server, stdin.lock(), std::io::stdout().lock())?);
+        let served = serve_lines(&mut server, stdin.lock(), std::io::stdout().lock());
+        // The recording is written however the session ended: it holds every step taken.
+        write_mcap(&server, a.mcap.as_deref())?;
+        return Ok(served?);
     };
     let listener = TcpListener::bind(addr).with_context(|| format!("cannot listen on {addr}"))?;
     eprintln!("listening on {}", listener.local_addr()?);
-    listen(&listener, server)
+    listen(&listener, server, a.mcap.as_deref())
+}
+
+/// Writes the session's MCAP recording to `path`, when one was asked for.
+fn write_mcap(server: &Server, path: Option<&std::path::Path>) -> anyhow::Result<()> {
+    if let (Some(path), Some(bytes)) = (path, server.mcap()) {
+        stopscan::io::atomic::write_bytes(path, &bytes?)?;
+        eprintln!("wrote {}", path.display());
+    }
+    Ok(())
 }
 
 /// What the connections share: the session, the connection being served, and how the
@@ -56,7 +68,11 @@ struct Shared {
 
 /// Serves connections until the session is over and its robot has gone, each new connection
 /// taking over from the one before.
-fn listen(listener: &TcpListener, server: Server) -> anyhow::Result<()> {
+fn listen(
+    listener: &TcpListener,
+    server: Server,
+    mcap: Option<&std::path::Path>,
+) -> anyhow::Result<()> {
     listener.set_nonblocking(true)?;
     let shared = Arc::new(Shared {
         server: Mutex::new(server),
@@ -66,11 +82,13 @@ fn listen(listener: &TcpListener, server: Server) -> anyhow::Result<()> {
     });
     let mut count = 0u64;
     loop {
+        let server = || shared.server.lock().unwrap_or_else(PoisonError::into_inner);
         if let Some(e) = shared.failed.lock().unwrap_or_else(PoisonError::into_inner).take() {
+            write_mcap(&server(), mcap)?;
             return Err(e.into());
         }
         if shared.finished.load(Ordering::SeqCst) {
-            return Ok(());
+            return write_mcap(&server(), mcap);
         }
         let stream = match listener.accept() {
             Ok((s, _)) => s,

@@ -4,7 +4,7 @@
 //!
 //! The browser tests need Chromium (`chromium`, `chromium-browser` or `google-chrome` on the
 //! PATH, or the binary named by `STOPSCAN_CHROMIUM`). Without one they are skipped with a
-//! message, unless `STOPSCAN_REQUIRE_BROWSER` is set (as `.ci/run` sets it, after installing
+//! message, unless `STOPSCAN_CI` is set (as `.ci/run` sets it, after installing
 //! Debian's chromium), when they fail.
 
 mod common;
@@ -240,7 +240,7 @@ fn a_sweep_refuses_report() {
     std::fs::create_dir_all(&dir).unwrap();
     let out = stopscan(&["explore", "--env", dir.to_str().unwrap(), "--report", "r.html"]);
     assert!(!out.status.success());
-    assert!(String::from_utf8_lossy(&out.stderr).contains("--report replays one run"));
+    assert!(String::from_utf8_lossy(&out.stderr).contains("--report records one run"));
 }
 
 /// The browser, or `None` (with the reason printed) when the test may be skipped.
@@ -255,8 +255,8 @@ fn chromium() -> Option<PathBuf> {
     });
     if found.is_none() {
         assert!(
-            std::env::var_os("STOPSCAN_REQUIRE_BROWSER").is_none(),
-            "STOPSCAN_REQUIRE_BROWSER is set but no chromium is on the PATH"
+            std::env::var_os("STOPSCAN_CI").is_none(),
+            "STOPSCAN_CI is set but no chromium is on the PATH"
         );
         eprintln!(
             "skipped: no chromium on the PATH (Debian: apt-get install chromium; or set STOPSCAN_CHROMIUM)"

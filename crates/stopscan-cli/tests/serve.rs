@@ -22,7 +22,7 @@ use stopscan::world::grid::{Drift, GridRoi, GridSensor, GridWorld};
 use stopscan::world::lidar::Lidar;
 use stopscan::world::polygon::PolygonWorld;
 
-use common::temp;
+use common::{mcap_count, mcap_topic, read_mcap, temp};
 
 #[path = "../../stopscan/tests/support/seen.rs"]
 mod seen;
@@ -107,7 +107,17 @@ fn run_session(
     strategy: &str,
     journal: &Path,
 ) -> (Value, Vec<Point>) {
-    let mut server = Server::spawn(&["--journal", journal.to_str().unwrap()]);
+    run_session_with(world, start, strategy, &["--journal", journal.to_str().unwrap()])
+}
+
+/// [`run_session`] with the server's arguments.
+fn run_session_with(
+    world: &PolygonWorld,
+    start: Point,
+    strategy: &str,
+    args: &[&str],
+) -> (Value, Vec<Point>) {
+    let mut server = Server::spawn(args);
     let mut client = client(world, start, strategy, 7);
     let mut line = client.start();
     loop {
@@ -149,6 +159,63 @@ fn a_simulated_robot_explores_an_office_over_standard_input() {
         assert_eq!(last["reply"], done);
     }
     check_schema(&[dir.join("cost_aware.jsonl"), dir.join("explore_lite.jsonl")]);
+}
+
+/// `serve --mcap`: the session recorded for Foxglove, read back by an independent reader and
+/// counted against the journal; a resumed session's recording is the same file, byte for
+/// byte.
+#[test]
+fn a_session_is_recorded_for_foxglove() {
+    let (world, start) = office();
+    let dir = temp("serve-mcap");
+    std::fs::create_dir_all(&dir).unwrap();
+    let (journal, mcap) = (dir.join("j.jsonl"), dir.join("live.mcap"));
+    let args = ["--journal", journal.to_str().unwrap(), "--mcap", mcap.to_str().unwrap()];
+    let (done, _) = run_session_with(&world, start, "cost_aware", &args);
+    assert_eq!(done["type"], "done", "{done}");
+    // After the fact, from the journal alone.
+    let again = dir.join("resumed.mcap");
+    let out = Command::new(env!("CARGO_BIN_EXE_stopscan"))
+        .args(["serve", "--resume", journal.to_str().unwrap(), "--mcap", again.to_str().unwrap()])
+        .stdin(Stdio::null())
+        .output()
+        .unwrap();
+    assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
+    assert_eq!(std::fs::read(&mcap).unwrap(), std::fs::read(&again).unwrap());
+    let Some(v) = read_mcap(&mcap) else { return };
+    // Counted from the journal: one log line per step, a transform per reported pose and per
+    // localised scan, a laser scan per scan sent, a goal per goal replied.
+    let text = std::fs::read_to_string(&journal).unwrap();
+    let steps: Vec<Value> =
+        text.lines().skip(1).map(|l| serde_json::from_str(l).unwrap()).collect();
+    let scans = steps.iter().filter(|s| s["request"]["scan"].is_object()).count() as u64;
+    let localised = steps.iter().filter(|s| s["reply"]["localised"].is_object()).count() as u64;
+    let goals = steps.iter().filter(|s| s["reply"]["type"] == "goal").count() as u64;
+    assert!(scans > 5 && goals > 5);
+    assert_eq!(mcap_count(&v, "/log"), steps.len() as u64);
+    assert_eq!(mcap_count(&v, "/lidar"), scans);
+    assert_eq!(mcap_count(&v, "/goal"), goals);
+    assert_eq!(mcap_count(&v, "/tf"), steps.len() as u64 + localised);
+    for (t, schema) in [
+        ("/log", "foxglove.Log"),
+        ("/lidar", "foxglove.LaserScan"),
+        ("/goal", "foxglove.PosesInFrame"),
+        ("/tf", "foxglove.FrameTransform"),
+    ] {
+        assert_eq!(mcap_topic(&v, t)["schema"], schema);
+    }
+    // The clock: scans cost 30 s each and travel 2 s a metre, so the last step's time is at
+    // least the scans' time, and time never goes back.
+    let times: Vec<u64> = mcap_topic(&v, "/log")["log_times"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|t| t.as_u64().unwrap())
+        .collect();
+    assert!(times.windows(2).all(|w| w[0] <= w[1]));
+    assert!(*times.last().unwrap() as f64 >= 30e9 * (scans - 1) as f64);
+    let end = mcap_topic(&v, "/log")["messages"].as_array().unwrap().last().unwrap().clone();
+    assert!(end["message"].as_str().unwrap().contains("done (explored)"), "{end}");
 }
 
 /// Every request and reply of the journals matches docs/protocol.schema.json, checked by an

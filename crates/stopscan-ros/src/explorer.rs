@@ -267,7 +267,7 @@ pub fn run(o: &ExplorerOptions) -> anyhow::Result<Value> {
 }
 
 async fn explore(o: &ExplorerOptions) -> anyhow::Result<Value> {
-    let options = ServeOptions { max_scans: o.max_scans, fsync: false };
+    let options = ServeOptions { max_scans: o.max_scans, fsync: false, record: false };
     let mut server = match (&o.journal, &o.resume) {
         (_, Some(r)) => Server::resume(r, options)?,
         (Some(j), None) => Server::with_journal(j, options)?,

@@ -3,7 +3,7 @@
 // Each test file uses some of these helpers, never all.
 #![allow(dead_code)]
 
-use std::path::PathBuf;
+use std::path::{Path, PathBuf};
 use std::process::{Command, Output};
 
 use serde_json::Value;
@@ -61,4 +61,40 @@ pub(crate) fn fixture(path: &str) -> String {
         .to_str()
         .unwrap()
         .to_string()
+}
+
+/// What the independent reader found in `file`, or `None` when it may be skipped.
+pub(crate) fn read_mcap(file: &Path) -> Option<Value> {
+    let has = Command::new("python3").args(["-c", "import mcap, jsonschema"]).output();
+    if !has.is_ok_and(|o| o.status.success()) {
+        assert!(
+            std::env::var_os("STOPSCAN_CI").is_none(),
+            "STOPSCAN_CI is set but python3 cannot import mcap and jsonschema"
+        );
+        eprintln!("skipped: needs python3 with mcap and jsonschema (pip install mcap jsonschema)");
+        return None;
+    }
+    let script = PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("tests/python/read_mcap.py");
+    let out = Command::new("python3").arg(script).arg(file).output().unwrap();
+    assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
+    let v: Value = serde_json::from_slice(&out.stdout).unwrap();
+    assert_eq!(v["validated"], true);
+    assert_eq!(v["errors"].as_array().unwrap().len(), 0, "schema errors: {}", v["errors"]);
+    // The summary's counts are the messages there are.
+    for (topic, t) in v["topics"].as_object().unwrap() {
+        assert_eq!(t["count"], v["summary_counts"][topic], "{topic}");
+        assert_eq!(t["message_encoding"], "json", "{topic}");
+        assert_eq!(t["schema_encoding"], "jsonschema", "{topic}");
+    }
+    Some(v)
+}
+
+pub(crate) fn mcap_topic<'a>(v: &'a Value, name: &str) -> &'a Value {
+    let t = &v["topics"][name];
+    assert!(t.is_object(), "no topic {name} in {:?}", v["topics"].as_object().unwrap().keys());
+    t
+}
+
+pub(crate) fn mcap_count(v: &Value, name: &str) -> u64 {
+    mcap_topic(v, name)["count"].as_u64().unwrap()
 }

@@ -276,6 +276,14 @@ impl Exploration {
     pub fn report(&self) -> String {
         crate::render::polygon_report(&self.replay, &self.record)
     }
+
+    /// The run as an MCAP recording for Foxglove ([`crate::render::polygon_mcap`]).
+    ///
+    /// # Errors
+    /// [`crate::render::McapError`] if the recording cannot be made.
+    pub fn mcap(&self) -> Result<Vec<u8>, crate::render::McapError> {
+        crate::render::polygon_mcap(&self.replay, &self.record)
+    }
 }
 
 /// Why an exploration (or a sweep) could not run.
@@ -551,7 +559,7 @@ pub fn explore(
         progress("offline: greedy reference in the configuration space");
         refs.greedy = Some(crate::offline::polygon::reach::greedy(&world, start));
     }
-    let (svg, replay) = pictures(env, &world, &run);
+    let (svg, replay) = pictures(env, &world, &run, raw.as_ref());
     let mut record = RunRecord::polygon(name, &world, &o.strategy, &o.cost, &run, &refs, o.seed);
     record.sensor = SensorInfo::of(&setup.sensor, &strategy.skipped());
     // A footprint makes the run partial, so what it saw is at hand.
@@ -574,6 +582,7 @@ fn pictures(
     env: &Environment,
     world: &PolygonWorld,
     run: &crate::sim::polygon::PolygonRun,
+    raw: Option<&LidarRun>,
 ) -> (String, crate::render::PolygonReplay) {
     let regions: Vec<_> = run.scans.iter().map(|s| s.region.clone()).collect();
     let cspace: Option<Vec<Vec<Vec<Point>>>> =
@@ -590,7 +599,13 @@ fn pictures(
         regions,
         path: run.path.clone(),
         steps: run.scan_tallies.clone(),
+        scan_times: run.scan_times.clone(),
         total: run.tally,
+        raw: raw.map(|r| crate::render::RawReplay {
+            laser: r.laser.clone(),
+            truth: r.stops.iter().map(|s| s.truth).collect(),
+            estimate: r.stops.iter().map(|s| s.estimate).collect(),
+        }),
     };
     (svg, replay)
 }

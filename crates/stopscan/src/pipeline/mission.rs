@@ -108,6 +108,9 @@ pub struct MissionState {
     /// Where the browser replay (`report.html`) goes, if anywhere.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub report: Option<PathBuf>,
+    /// Where the MCAP recording goes, if anywhere.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub mcap: Option<PathBuf>,
     /// The event trace, if the mission writes one.
     pub trace: Option<PathBuf>,
     /// The trace's length in bytes when this state was taken: a resumed mission cuts the
@@ -154,6 +157,8 @@ pub struct MissionSpec {
     pub svg: PathBuf,
     /// Where the browser replay (`report.html`) goes, if anywhere.
     pub report: Option<PathBuf>,
+    /// Where the MCAP recording for Foxglove goes, if anywhere.
+    pub mcap: Option<PathBuf>,
     /// Where the event trace goes, if anywhere.
     pub trace: Option<PathBuf>,
 }
@@ -177,6 +182,9 @@ pub enum MissionRunError {
     /// The mission did not finish within [`Mission::step_limit`] steps.
     #[error("the mission did not finish within {0} steps")]
     StepLimit(u64),
+    /// The MCAP recording could not be made.
+    #[error("{0}")]
+    Mcap(String),
     /// The state file cannot be read.
     #[error("cannot read {}", .path.display())]
     ReadState {
@@ -308,7 +316,7 @@ impl MissionState {
     }
 
     /// Sends a resumed mission's outputs elsewhere: `out` (and the replay beside it, with
-    /// `.svg`, unless `svg` is given), `svg`, `report`; a `trace` other than the recorded one replaces it
+    /// `.svg`, unless `svg` is given), `svg`, `report`, `mcap`; a `trace` other than the recorded one replaces it
     /// and starts empty. Both outputs are checked ([`atomic::check_file`]).
     ///
     /// # Errors
@@ -318,6 +326,7 @@ impl MissionState {
         out: Option<&Path>,
         svg: Option<&Path>,
         report: Option<&Path>,
+        mcap: Option<&Path>,
         trace: Option<&Path>,
     ) -> Result<(), WriteError> {
         if let Some(o) = out {
@@ -329,10 +338,13 @@ impl MissionState {
         if let Some(r) = report {
             self.report = Some(absolute(r));
         }
+        if let Some(m) = mcap {
+            self.mcap = Some(absolute(m));
+        }
         atomic::check_file(&self.out)?;
         atomic::check_file(&self.svg)?;
-        if let Some(r) = &self.report {
-            atomic::check_file(r)?;
+        for p in [&self.report, &self.mcap].into_iter().flatten() {
+            atomic::check_file(p)?;
         }
         if let Some(t) = trace {
             let t = absolute(t);
@@ -385,6 +397,8 @@ pub struct MissionOutcome {
     pub svg: PathBuf,
     /// Where the browser replay was written, if anywhere.
     pub report: Option<PathBuf>,
+    /// Where the MCAP recording was written, if anywhere.
+    pub mcap: Option<PathBuf>,
 }
 
 /// Counts the bytes written through it (the trace's length, for the state file).
@@ -454,6 +468,7 @@ impl MissionRun {
             out: absolute(&spec.out),
             svg: absolute(&spec.svg),
             report: spec.report.as_deref().map(absolute),
+            mcap: spec.mcap.as_deref().map(absolute),
             trace: spec.trace.as_deref().map(absolute),
             trace_len: 0,
             mission,
@@ -540,11 +555,17 @@ impl MissionRun {
             let html = crate::render::roi_report(world.roi(), mapped.as_deref(), &record);
             atomic::write_bytes(r, html.as_bytes())?;
         }
+        if let Some(m) = &file.mcap {
+            let bytes = crate::render::roi_mcap(world.roi(), mapped.as_deref(), &record)
+                .map_err(|e| MissionRunError::Mcap(e.to_string()))?;
+            atomic::write_bytes(m, &bytes)?;
+        }
         Ok(MissionOutcome {
             record,
             out: file.out.clone(),
             svg: file.svg.clone(),
             report: file.report.clone(),
+            mcap: file.mcap.clone(),
         })
     }
 }
@@ -575,6 +596,7 @@ mod tests {
             out: dir.join("run.json"),
             svg: dir.join("run.svg"),
             report: None,
+            mcap: None,
             trace: Some(dir.join("events.jsonl")),
         }
     }

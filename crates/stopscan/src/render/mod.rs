@@ -14,6 +14,7 @@
 //! - `roi`: the animated SVG replay of a grid mission ([`roi_svg`]);
 //! - `report`: `report.html`, the self-contained browser replay of an exploration
 //!   ([`polygon_report`]) or a grid mission ([`roi_report`]);
+//! - `mcap`: MCAP recordings with Foxglove's schemas ([`polygon_mcap`], [`roi_mcap`]);
 //! - `glyphs`: bitmap text drawn without clipped glyphs (plotters' font stack).
 
 use std::path::PathBuf;
@@ -22,6 +23,7 @@ mod chart;
 mod glyphs;
 mod labels;
 mod layout;
+pub mod mcap;
 mod policy;
 mod report;
 mod roi;
@@ -31,8 +33,9 @@ pub use chart::{CHART_SIZE, LineChart, Series, chart_layout, write_chart};
 pub use layout::{
     ChartLayout, LEGEND_CLEARANCE, PixelBox, PixelSize, Ticks, legend_corner, tick_label, ticks,
 };
+pub use mcap::{McapError, McapWriter, polygon_mcap, roi_mcap};
 pub use policy::write_policy_image;
-pub use report::{MAX_REPORTED_CELLS, PolygonReplay, polygon_report, roi_report};
+pub use report::{MAX_REPORTED_CELLS, PolygonReplay, RawReplay, polygon_report, roi_report};
 pub use roi::roi_svg;
 pub use scene::{SceneExtras, exploration_svg, scene_svg};
 

@@ -52,8 +52,24 @@ pub struct PolygonReplay {
     pub path: Vec<Point>,
     /// The tally when each scan was taken, that scan counted: `steps[k]` after scan `k + 1`.
     pub steps: Vec<Tally>,
+    /// When each scan began, seconds.
+    pub scan_times: Vec<f64>,
     /// The whole run's tally.
     pub total: Tally,
+    /// The raw scans, when the run was driven from a simulated lidar.
+    pub raw: Option<RawReplay>,
+}
+
+/// What a raw-scan run adds to its replay: each stop's scan as the lidar returned it, where
+/// it was truly taken, and where the robot believed it was after ICP.
+#[derive(Debug, Clone)]
+pub struct RawReplay {
+    /// The scans.
+    pub laser: Vec<crate::protocol::laser::LaserScan>,
+    /// The true poses.
+    pub truth: Vec<crate::protocol::laser::Pose>,
+    /// The poses believed after alignment.
+    pub estimate: Vec<crate::protocol::laser::Pose>,
 }
 
 /// One step of the replay: what has been done and what it cost.
@@ -126,7 +142,11 @@ impl Rounder {
 /// The index of the path vertex at which each scan was taken: the first vertex that is the
 /// scan's viewpoint at or after both the previous scan's and the scan's move count (every
 /// move adds at least one vertex), or failing that the nearest one after them.
-fn scan_vertices(path: &[Point], regions: &[VisibilityRegion], steps: &[Tally]) -> Vec<usize> {
+pub(super) fn scan_vertices(
+    path: &[Point],
+    regions: &[VisibilityRegion],
+    steps: &[Tally],
+) -> Vec<usize> {
     let mut at = 0;
     regions
         .iter()
@@ -272,7 +292,7 @@ struct RoiData<'a> {
 }
 
 /// Runs of consecutive cells along rows, of sorted cells.
-fn row_runs(cells: &[Cell]) -> Vec<i32> {
+pub(super) fn row_runs(cells: &[Cell]) -> Vec<i32> {
     let mut out = Vec::new();
     let mut i = 0;
     while i < cells.len() {

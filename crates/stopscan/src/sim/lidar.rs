@@ -101,6 +101,8 @@ pub struct LidarRun {
     pub observations: Vec<PolygonObservation>,
     /// Every stop.
     pub stops: Vec<Stop>,
+    /// Every stop's scan as the lidar returned it, taken at the stop's true pose.
+    pub laser: Vec<LaserScan>,
 }
 
 /// A raw-scan run that was cut short, with the run until then.
@@ -359,6 +361,7 @@ impl<'a> Robot<'a> {
                 believed_path: vec![start],
                 observations: Vec::new(),
                 stops: Vec::new(),
+                laser: Vec::new(),
             },
         }
     }
@@ -427,6 +430,7 @@ impl<'a> Robot<'a> {
             self.out.believed_path.push(belief.at());
         }
         self.out.observations.push(reading.observation.clone());
+        self.out.laser.push(scan);
         Ok(reading.observation)
     }
 }

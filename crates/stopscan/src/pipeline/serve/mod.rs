@@ -23,6 +23,7 @@
 pub mod bench;
 pub mod client;
 pub mod message;
+pub mod recording;
 mod roi;
 mod session;
 
@@ -51,11 +52,13 @@ pub struct ServeOptions {
     /// Whether each journal line is also synced to the disk (`fsync`) before the reply: safe
     /// against a power cut, not only a crash, at about a millisecond per step.
     pub fsync: bool,
+    /// Whether the session is kept for an MCAP recording ([`Server::mcap`]).
+    pub record: bool,
 }
 
 impl Default for ServeOptions {
     fn default() -> Self {
-        Self { max_scans: crate::sim::lidar::MAX_SCANS, fsync: false }
+        Self { max_scans: crate::sim::lidar::MAX_SCANS, fsync: false, record: false }
     }
 }
 
@@ -101,6 +104,8 @@ pub struct Server {
     journal: Option<Journal>,
     /// Each answered step's request (hashed) and reply line, by `seq`.
     answered: Vec<(u64, String)>,
+    /// The steps kept for an MCAP recording, when asked for.
+    recording: Option<recording::SessionRecording>,
 }
 
 fn digest(canonical: &str) -> u64 {
@@ -112,7 +117,12 @@ fn digest(canonical: &str) -> u64 {
 impl Server {
     /// A server with no journal.
     pub fn new(options: ServeOptions) -> Self {
-        Self { session: Session::new(options.max_scans), journal: None, answered: Vec::new() }
+        Self {
+            session: Session::new(options.max_scans),
+            journal: None,
+            answered: Vec::new(),
+            recording: options.record.then(recording::SessionRecording::default),
+        }
     }
 
     /// A server that journals to `path`, a new file.
@@ -203,6 +213,15 @@ impl Server {
         self.journal.as_ref().map_or(0.0, |j| j.spent().as_secs_f64())
     }
 
+    /// The session so far as an MCAP recording for Foxglove, when the server keeps one
+    /// ([`ServeOptions::record`]).
+    ///
+    /// # Errors
+    /// [`crate::render::McapError`] if the recording cannot be made.
+    pub fn mcap(&self) -> Option<Result<Vec<u8>, crate::render::McapError>> {
+        self.recording.as_ref().map(recording::SessionRecording::mcap)
+    }
+
     /// Steps answered so far (the next `seq`).
     pub fn steps(&self) -> u64 {
         self.answered.len() as u64
@@ -261,7 +280,11 @@ impl Server {
             Err(e) => (Reply::error(Some(parsed.seq), e).to_line(), None),
             Ok((body, localised)) => {
                 let reply = Reply { protocol: PROTOCOL, seq: Some(parsed.seq), body, localised };
-                let reply = reply.to_line();
+                let line = reply.to_line();
+                if let Some(r) = &mut self.recording {
+                    r.push(parsed.request, reply);
+                }
+                let reply = line;
                 let entry = format!(
                     "{{\"seq\":{},\"request\":{},\"reply\":{}}}",
                     parsed.seq, parsed.canonical, reply
