@@ -150,6 +150,13 @@ impl ExploreOptions {
     /// The robot as strategies are told about it, in `env` (whose cell size sets the default
     /// window rule).
     pub fn robot(&self, env: &Environment) -> RobotSetup {
+        self.robot_for(env.cell_size)
+    }
+
+    /// The robot as [`ExploreOptions::robot`] makes it, for a map of `cell_size` (an
+    /// occupancy map's cell, metres; `None` for a polygon): what a strategy driven outside the
+    /// simulator (a Python driver) is built for.
+    pub fn robot_for(&self, cell_size: Option<f64>) -> RobotSetup {
         RobotSetup {
             cost: self.cost,
             footprint: self.footprint.clone(),
@@ -159,10 +166,10 @@ impl ExploreOptions {
                 min_feature: self.min_feature,
                 min_window: self
                     .min_window
-                    .unwrap_or_else(|| default_min_window(&self.footprint, env.cell_size)),
+                    .unwrap_or_else(|| default_min_window(&self.footprint, cell_size)),
                 min_pocket: self
                     .min_pocket
-                    .unwrap_or_else(|| default_min_pocket(&self.footprint, env.cell_size)),
+                    .unwrap_or_else(|| default_min_pocket(&self.footprint, cell_size)),
                 pocket_cap: self.pocket_cap,
                 wall_tolerance: self.lidar.map_or(0.0, |l| planning_margin(l.sigma)),
             },

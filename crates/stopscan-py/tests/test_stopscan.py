@@ -1,0 +1,184 @@
+"""The Python bindings against the command line and against the definitions.
+
+Run with ``pytest crates/stopscan-py/tests`` after ``pip install ./crates/stopscan-py``. The
+CLI comparisons need the ``stopscan`` binary: ``STOPSCAN_BIN``, else ``target/release`` or
+``target/debug`` of the repository (built by ``cargo build``).
+"""
+
+import json
+import math
+import os
+import pathlib
+import subprocess
+
+import numpy as np
+import pytest
+
+import stopscan
+
+ROOT = pathlib.Path(__file__).resolve().parents[3]
+OFFICE = ROOT / "fixtures" / "office.geojson"
+DEPOT = ROOT / "fixtures" / "ros-maps" / "depot.yaml"
+
+
+def cli():
+    if "STOPSCAN_BIN" in os.environ:
+        return os.environ["STOPSCAN_BIN"]
+    for profile in ("release", "debug"):
+        p = ROOT / "target" / profile / "stopscan"
+        if p.exists():
+            return str(p)
+    pytest.skip("no stopscan binary: cargo build first, or set STOPSCAN_BIN")
+
+
+def run_cli(*args):
+    out = subprocess.run([cli(), *args], capture_output=True, text=True)
+    assert out.returncode == 0, out.stderr
+    return out.stdout
+
+
+def test_loaders_read_every_format(tmp_path):
+    office = stopscan.load(OFFICE)
+    assert office.name == "office"
+    assert office.holes and office.outer.shape[1] == 2
+    assert office.outer.dtype == np.float64
+    # The same polygon through WKT and the .pol-like benchmark format is the same area.
+    outer = office.outer
+    holes = office.holes
+    ring = lambda r: "(" + ", ".join(f"{x!r} {y!r}" for x, y in [*r.tolist(), r[0].tolist()]) + ")"
+    wkt = tmp_path / "office.wkt"
+    wkt.write_text("POLYGON(" + ", ".join(ring(r) for r in [outer, *holes]) + ")")
+    assert stopscan.load(wkt).area == pytest.approx(office.area, rel=1e-12)
+    depot = stopscan.load(DEPOT)
+    assert depot.cell_size == pytest.approx(0.05)
+    with pytest.raises(ValueError, match="nope.geojson"):
+        stopscan.load(tmp_path / "nope.geojson")
+
+
+def test_shapely_and_geo_interface_go_in_and_come_out():
+    shapely = pytest.importorskip("shapely")
+    from shapely.geometry import Point, Polygon, shape
+
+    square = Polygon([(0, 0), (4, 0), (4, 4), (0, 4)], [[(1, 1), (1, 2), (2, 2), (2, 1)]])
+    regions = stopscan.visibility(square, [Point(0.5, 0.5), Point(3.5, 3.5)])
+    assert len(regions) == 2
+    for r in regions:
+        poly = shape(r)
+        assert poly.is_valid
+        assert poly.area == pytest.approx(r.area, rel=1e-12)
+        assert poly.within(square.buffer(1e-9))
+    # From the corner (0.5, 0.5) the hole hides the square behind it.
+    assert regions[0].area < square.area
+    assert len(regions[0].windows) >= 1
+
+
+def brute_force_visible(outer, holes, p, q):
+    """Whether q is seen from p: the segment crosses no edge properly (from the definition)."""
+    def cross(a, b, c):
+        return (b[0] - a[0]) * (c[1] - a[1]) - (b[1] - a[1]) * (c[0] - a[0])
+
+    for ring in [outer, *holes]:
+        n = len(ring)
+        for i in range(n):
+            a, b = ring[i], ring[(i + 1) % n]
+            d1, d2 = cross(p, q, a), cross(p, q, b)
+            d3, d4 = cross(a, b, p), cross(a, b, q)
+            if d1 * d2 < 0 and d3 * d4 < 0:
+                return False
+    return True
+
+
+def inside(poly, q):
+    x, y = q
+    c = False
+    n = len(poly)
+    for i in range(n):
+        (x1, y1), (x2, y2) = poly[i], poly[(i + 1) % n]
+        if (y1 > y) != (y2 > y) and x < x1 + (y - y1) / (y2 - y1) * (x2 - x1):
+            c = not c
+    return c
+
+
+def test_visibility_matches_a_brute_force_and_the_cli():
+    office = stopscan.load(OFFICE)
+    rng = np.random.default_rng(3)
+    lo, hi = office.outer.min(axis=0), office.outer.max(axis=0)
+    holes = [h.tolist() for h in office.holes]
+    outer = office.outer.tolist()
+    points = []
+    while len(points) < 6:
+        p = rng.uniform(lo, hi)
+        if inside(outer, p) and not any(inside(h, p) for h in holes):
+            points.append(p)
+    regions = stopscan.visibility(office, np.array(points))
+    for p, r in zip(points, regions):
+        poly = r.vertices.tolist()
+        for _ in range(150):
+            q = rng.uniform(lo, hi)
+            if not inside(outer, q) or any(inside(h, q) for h in holes):
+                continue
+            # Points well inside or well outside the region (not on its boundary).
+            if inside(poly, q) != brute_force_visible(outer, holes, p, q):
+                d = min(math.dist(q, v) for v in poly)
+                assert d < 1e-6, (p, q)
+        # The CLI gives the same region.
+        text = run_cli("visibility", "--env", str(OFFICE), "--at", f"{float(p[0])!r},{float(p[1])!r}", "--format", "json")
+        want = json.loads(text)
+        region = want["regions"][0] if "regions" in want else want
+        np.testing.assert_array_equal(np.array(region["polygon"]), r.vertices)
+
+
+def test_explore_records_equal_the_cli_byte_for_byte(tmp_path):
+    for strategy, extra in [("depth_first", {}), ("cost_aware", {"robot_radius": 0.2})]:
+        out = tmp_path / f"{strategy}.json"
+        args = ["explore", "--env", str(OFFICE), "--strategy", strategy, "--out", str(out),
+                "--optimum-seconds", "0", "--seed", "5"]
+        if "robot_radius" in extra:
+            args += ["--robot-radius", "0.2"]
+        run_cli(*args)
+        text = stopscan.explore_json(OFFICE, strategy=strategy, seed=5, optimum_seconds=0, **extra)
+        assert text == out.read_text(), strategy
+        record = stopscan.explore(OFFICE, strategy=strategy, seed=5, optimum_seconds=0, **extra)
+        assert record == json.loads(out.read_text())
+
+
+def test_a_python_driver_reproduces_the_run():
+    """Driving a strategy step by step, with the exact sensor, is the simulator's run."""
+    office = stopscan.load(OFFICE)
+    record = stopscan.explore(office, optimum_seconds=0)
+    s = stopscan.Strategy("depth_first")
+    at = office.start
+    s.observe(start=at)
+    scans = []
+    while True:
+        action = s.next_action()
+        if action["type"] == "done":
+            break
+        if action["type"] == "move":
+            at = action["to"]
+            s.observe(arrived=True)
+        else:
+            region = stopscan.visibility(office, [at])[0]
+            scans.append(region.viewpoint)
+            s.observe(region=region)
+    want = [tuple(x["at"]) for x in record["robots"][0]["scans"]]
+    assert scans == want
+
+
+def test_bad_input_is_a_clear_error():
+    with pytest.raises(ValueError, match="shape"):
+        stopscan.visibility(OFFICE, np.zeros((3, 3)))
+    with pytest.raises(ValueError, match="range"):
+        stopscan.visibility(OFFICE, [[1.0, 6.0]], range=-1.0)
+    with pytest.raises(ValueError):
+        stopscan.Strategy("no_such_strategy")
+    s = stopscan.Strategy()
+    with pytest.raises(ValueError, match="observe first"):
+        s.next_action()
+    with pytest.raises(ValueError, match="exactly one"):
+        s.observe(arrived=True, start=(0.0, 0.0))
+
+
+def test_corner_circle_equals_the_cli():
+    text = run_cli("corner", "circle", "--distance", "2", "--format", "json")
+    assert stopscan.corner_circle(2.0) == json.loads(text)
