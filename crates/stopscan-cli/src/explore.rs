@@ -278,13 +278,7 @@ fn sweep(a: &ExploreArgs, g: &Global, options: &ExploreOptions) -> anyhow::Resul
         );
     }
     let out = g.out.clone().unwrap_or_else(|| PathBuf::from("sweep.csv"));
-    atomic::write(&out, |w| {
-        let mut csv = csv::Writer::from_writer(w);
-        for r in &rows {
-            csv.serialize(r.csv_row())?;
-        }
-        csv.flush()
-    })?;
+    atomic::write(&out, |w| stopscan::pipeline::sweep::write_csv(&rows, w))?;
     print_sweep(&rows, &out)
 }
 

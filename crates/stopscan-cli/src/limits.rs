@@ -1,6 +1,7 @@
 //! Soft size limits: work above them is refused before anything is allocated, with a message
 //! that names the flag, what it implies, the limit with its cost, and the way out
-//! (`--allow-large`). Hard limits, which no flag lifts, live in the library beside the code
+//! (`--allow-large`). The limits themselves are the library's ([`stopscan::pipeline::limits`]),
+//! which the Python bindings apply too. Hard limits, which no flag lifts, live in the library beside the code
 //! they protect (`MAX_STOPS`, `MAX_BUCKETS`, `MAX_STOPS_MDP1/2`, `MAX_FRAMES`,
 //! `MIN_ARC_TOLERANCE`). The README's "Limits" table lists both, with measurements.
 
@@ -8,29 +9,9 @@ use anyhow::bail;
 
 use crate::cli::Global;
 
-/// Monte Carlo samples per strategy (`corner simulate`, `reproduce`): about 2 µs each.
-pub(crate) const SAMPLES: u64 = 10_000_000;
-/// UNIREC stops (`corner ratio`, `corner simulate`, `bench ratio`): 16 bytes and ~45 ns each.
-pub(crate) const STOPS: u64 = 10_000_000;
-/// Robots of a region-of-interest mission (`roi`, `bench roi`).
-pub(crate) const ROBOTS: u64 = 10_000;
-/// Cells of a region or of a search box (`roi --random`, `--search-box`, `bench roi --n`):
-/// about 300 bytes and 2.5 µs each.
-pub(crate) const CELLS: u64 = 4_000_000;
-/// Camera frames a mission may render and classify, estimated as frames per scan times the
-/// region's cells and a third of the search box (`roi --camera --frames`): ~0.6 ms each.
-pub(crate) const FRAMES: u64 = 250_000;
-/// Distances of `bench circle --n`: ~7 µs each per timed repetition (and one warm-up).
-pub(crate) const DISTANCES: u64 = 1_000_000;
-/// Office floors of `bench explore --n`: ~2.5 ms each.
-pub(crate) const FLOORS: u64 = 10_000;
-/// `generate --size` (turns, teeth, rooms per side) and `--desks`: 0.8–10 s at the limit.
-pub(crate) const SIZE: u64 = 10_000;
-/// `generate star --size` (spikes): the star's validation grows quadratically (3,000
-/// spikes: 9 s).
-pub(crate) const SPIKES: u64 = 1_000;
-/// `generate forest --size` (pillars in a 30 m × 20 m rectangle: a few hundred fit).
-pub(crate) const PILLARS: u64 = 1_000;
+pub(crate) use stopscan::pipeline::limits::{
+    CELLS, DISTANCES, FLOORS, FRAMES, PILLARS, ROBOTS, SAMPLES, SIZE, SPIKES, STOPS,
+};
 
 /// `x` with four significant digits, rounded up (`1.571e-7`): a smallest allowed value.
 pub(crate) fn at_least(x: f64) -> String {

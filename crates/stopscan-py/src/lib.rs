@@ -24,11 +24,24 @@ use stopscan::protocol::polygon::{Footprint, PolygonObservation};
 use stopscan::protocol::{Action, CostModel, Feedback, MoveFailure};
 use stopscan::strategy::polygon::PolygonFeedback;
 
+mod corner;
+mod roi;
+mod sweep;
+
 #[global_allocator]
 static ALLOCATOR: mimalloc::MiMalloc = mimalloc::MiMalloc;
 
 fn value_error(e: impl std::fmt::Display) -> PyErr {
     PyValueError::new_err(e.to_string())
+}
+
+/// Refuses `demand` above the soft limit `max` (the CLI's, [`stopscan::pipeline::limits`])
+/// unless `allow_large`: `what` says what was asked.
+fn soft_limit(allow_large: bool, demand: f64, max: u64, what: &str) -> PyResult<()> {
+    if allow_large || demand <= max as f64 {
+        return Ok(());
+    }
+    Err(value_error(format!("{what}: the limit is {max}; pass allow_large=True to go beyond it")))
 }
 
 /// `n × 2` float64 array of points.
@@ -293,7 +306,7 @@ fn visibility(
 
 /// The pipeline's options from the keyword arguments.
 #[allow(clippy::too_many_arguments)]
-fn explore_options(
+pub(crate) fn explore_options(
     strategy: &str,
     scan_time: f64,
     move_time: f64,
@@ -467,14 +480,6 @@ impl PyStrategy {
     }
 }
 
-/// The circle strategy around a corner at distance `d` (the circle paper): its report as
-/// JSON text (the stops, the ratio, the bound), as `stopscan corner circle --format json`.
-#[pyfunction]
-fn corner_circle(py: Python<'_>, d: f64) -> PyResult<String> {
-    let r = py.detach(|| stopscan::pipeline::corner::circle(d, None)).map_err(value_error)?;
-    serde_json::to_string(&r).map_err(value_error)
-}
-
 /// The native module.
 #[pymodule]
 fn _stopscan(m: &Bound<'_, PyModule>) -> PyResult<()> {
@@ -485,7 +490,17 @@ fn _stopscan(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(from_geojson, m)?)?;
     m.add_function(wrap_pyfunction!(visibility, m)?)?;
     m.add_function(wrap_pyfunction!(explore_json, m)?)?;
-    m.add_function(wrap_pyfunction!(corner_circle, m)?)?;
+    m.add_function(wrap_pyfunction!(corner::corner_circle, m)?)?;
+    m.add_function(wrap_pyfunction!(corner::corner_ratio, m)?)?;
+    m.add_function(wrap_pyfunction!(corner::corner_policy, m)?)?;
+    m.add_function(wrap_pyfunction!(roi::roi_json, m)?)?;
+    m.add_function(wrap_pyfunction!(roi::load_region, m)?)?;
+    m.add_function(wrap_pyfunction!(sweep::sweep_files, m)?)?;
+    m.add_function(wrap_pyfunction!(sweep::sweep_check, m)?)?;
+    m.add_function(wrap_pyfunction!(sweep::sweep_load, m)?)?;
+    m.add_function(wrap_pyfunction!(sweep::sweep_run, m)?)?;
+    m.add_function(wrap_pyfunction!(sweep::sweep_failed, m)?)?;
+    m.add_function(wrap_pyfunction!(sweep::sweep_csv_header, m)?)?;
     m.add("__version__", env!("CARGO_PKG_VERSION"))?;
     Ok(())
 }

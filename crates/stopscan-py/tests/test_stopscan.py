@@ -182,3 +182,138 @@ def test_bad_input_is_a_clear_error():
 def test_corner_circle_equals_the_cli():
     text = run_cli("corner", "circle", "--distance", "2", "--format", "json")
     assert stopscan.corner_circle(2.0) == json.loads(text)
+
+
+def test_corner_ratio_and_policy_equal_the_cli():
+    for strategy, extra in [("unirec", []), ("exprec", ["--exprec", "appendix"]),
+                            ("circle", []), ("stops", ["--stops-deg", "10,40,90"])]:
+        want = json.loads(run_cli("--format", "json", "corner", "ratio", "--strategy", strategy,
+                                  "--delta", "0.05", *extra))
+        kw = {"exprec": "appendix"} if extra[:1] == ["--exprec"] else {}
+        stops = [10, 40, 90] if strategy == "stops" else None
+        assert stopscan.corner_ratio(strategy, 0.05, stops, **kw) == want
+    want = json.loads(run_cli("--format", "json", "corner", "policy", "--belief", "normal:60,10",
+                              "--memory", "none", "--step-deg", "10", "--distance", "8"))
+    got = stopscan.corner_policy("normal:60,10", memory="none", step_deg=10, distance=8)
+    assert got == want
+    assert got["expected_time"] > 0 and got["stops"] >= len(got["scan_angles_deg"])
+
+
+def test_corner_bad_input_is_a_clear_error():
+    with pytest.raises(ValueError, match="allow_large"):
+        stopscan.corner_ratio("unirec", 1e-9)
+    with pytest.raises(ValueError, match="stops_deg"):
+        stopscan.corner_ratio("stops", 0.1)
+    with pytest.raises(ValueError, match="route: expected arc or chord"):
+        stopscan.corner_ratio("exprec", 0.1, route="straight")
+    with pytest.raises(ValueError, match="delta"):
+        stopscan.corner_ratio("exprec", float("nan"))
+    with pytest.raises(ValueError, match="belief|uniform"):
+        stopscan.corner_policy("gaussian:1")
+
+
+def test_roi_records_and_pictures_equal_the_cli_byte_for_byte(tmp_path):
+    out = tmp_path / "cli.json"
+    run_cli("--seed", "3", "--out", str(out), "roi", "--random", "300", "--robots", "3",
+            "--report", str(tmp_path / "cli.html"), "--mcap", str(tmp_path / "cli.mcap"))
+    text = stopscan.roi_json(random=300, robots=3, seed=3, svg=tmp_path / "py.svg",
+                             report=tmp_path / "py.html", mcap=tmp_path / "py.mcap")
+    assert text == out.read_text()
+    for ext in ("svg", "html", "mcap"):
+        cli_file = out.with_suffix(".svg") if ext == "svg" else tmp_path / f"cli.{ext}"
+        assert (tmp_path / f"py.{ext}").read_bytes() == cli_file.read_bytes(), ext
+    # A text grid from a file, and the same region as a numpy mask (from the file read by
+    # its definition: '#' region, '.' outside, 'S' start), give the same record.
+    lake = ROOT / "fixtures" / "roi" / "lake.txt"
+    run_cli("--out", str(out), "roi", "--grid", str(lake), "--robots", "2",
+            "--roi-speed", "0.1", "--roi-heading-deg", "30")
+    rows = [l.rstrip() for l in lake.read_text().splitlines() if not l.lstrip().startswith(";")]
+    width = max(len(r) for r in rows)
+    mask = np.array([[c in "#S" for c in r.ljust(width)] for r in rows])
+    (start,) = [(i, r.index("S")) for i, r in enumerate(rows) if "S" in r] or [None]
+    record = stopscan.roi(mask, start=start, name="lake", robots=2, roi_speed=0.1,
+                          roi_heading_deg=30)
+    assert record == json.loads(out.read_text())
+    assert stopscan.roi_json(lake, robots=2, roi_speed=0.1, roi_heading_deg=30) == out.read_text()
+    region = stopscan.load_region(lake)
+    assert (region.mask == mask[: region.mask.shape[0]]).all() and region.start == start
+    assert record["metrics"]["visited_cells"] == int(mask.sum())
+
+
+def test_roi_bad_input_is_a_clear_error(tmp_path):
+    with pytest.raises(ValueError, match="exactly one of region"):
+        stopscan.roi()
+    with pytest.raises(ValueError, match="allow_large"):
+        stopscan.roi(random=10**8)
+    with pytest.raises(ValueError, match="not a cell of the region"):
+        stopscan.roi(np.array([[True, False]]), start=(0, 1))
+    with pytest.raises(ValueError, match="4-connected|connected"):
+        stopscan.roi(np.array([[True, False, True]]))
+    with pytest.raises(ValueError, match="search_box and launch"):
+        stopscan.roi(random=50, search_box=(0, 0, 5, 5))
+    with pytest.raises(ValueError, match="nope.txt"):
+        stopscan.roi(tmp_path / "nope.txt")
+
+
+def sweep_folder(path, count):
+    """A folder of `count` small generated environments, and a file that does not load."""
+    path.mkdir()
+    families = ["forest", "comb", "spiral", "office"]
+    for k in range(count):
+        family = families[k % len(families)]
+        size = {"forest": 3 + k % 3, "comb": 2 + k % 4, "spiral": 2 + k % 3, "office": 1 + k % 2}
+        run_cli("--seed", str(k), "generate", family, "--size", str(size[family]),
+                "--output", str(path / f"{family}{k:02}.geojson"))
+    (path / "broken.wkt").write_text("POLYGON ((0 0, 4 0\n")
+    return path
+
+
+def test_a_sweep_equals_the_cli_csv_byte_for_byte(tmp_path):
+    folder = sweep_folder(tmp_path / "envs", 6)
+    out = tmp_path / "cli.csv"
+    run_cli("--out", str(out), "explore", "--env", str(folder), "--strategy", "all",
+            "--scan-time", "2", "--speed", "0.5")
+    with pytest.warns(UserWarning) as warned:
+        table = stopscan.sweep(folder, "all", scan_time=2, speed=0.5, backend="serial")
+    messages = [str(w.message) for w in warned]
+    assert any(m.startswith("broken.wkt: not swept: ") for m in messages), messages
+    assert table.csv() == out.read_text()
+    assert len(table) == 7 * 6 and table.columns[:2] == ["environment", "strategy"]
+    # Every row's time is its terms' sum, and the broken file's rows carry its error.
+    for row in table:
+        if row["error"]:
+            assert row["environment"] == "broken.wkt"
+        else:
+            terms = row["scan_time_total"] + row["move_time_total"] + row["travel_time_total"]
+            assert row["time"] == pytest.approx(terms, rel=1e-12)
+            assert row["scan_time_total"] == pytest.approx(2 * row["scans"])
+    table.write_csv(tmp_path / "py.csv")
+    assert (tmp_path / "py.csv").read_text() == out.read_text()
+    with pytest.raises(ValueError, match="warp"):
+        stopscan.sweep(folder, "warp", backend="serial")
+    with pytest.raises(ValueError, match="backend"):
+        stopscan.sweep(folder, "depth_first", backend="dask")
+
+
+def test_a_ray_sweep_of_200_runs_equals_the_serial_one(tmp_path):
+    if os.environ.get("STOPSCAN_CI"):
+        import ray
+    else:
+        ray = pytest.importorskip("ray", reason="Ray is not installed (pip install ray)")
+    folder = sweep_folder(tmp_path / "envs", 40)
+    strategies = ["depth_first", "nearest_frontier", "greedy_nbv", "explore_lite", "cost_aware"]
+    with pytest.warns(UserWarning, match="broken.wkt"):
+        serial = stopscan.sweep(folder, strategies, backend="serial")
+    ray.init(num_cpus=2, include_dashboard=False)
+    try:
+        seen = []
+        with pytest.warns(UserWarning, match="broken.wkt"):
+            on_ray = stopscan.sweep(folder, strategies, backend="ray",
+                                    progress=lambda done, total: seen.append((done, total)))
+    finally:
+        ray.shutdown()
+    assert on_ray.backend == "ray" and serial.backend == "serial"
+    assert sum(1 for r in serial if not r["error"]) == 200
+    assert on_ray.csv() == serial.csv()
+    assert on_ray.rows == serial.rows
+    assert seen[-1] == (200, 200)

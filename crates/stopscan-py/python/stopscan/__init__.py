@@ -22,22 +22,36 @@ from ._stopscan import (
     Strategy,
     __version__,
     corner_circle as _corner_circle,
+    corner_policy as _corner_policy,
+    corner_ratio as _corner_ratio,
     explore_json as _explore_json,
     from_geojson as _from_geojson,
     load as _load,
+    load_region as _load_region,
+    roi_json as _roi_json,
     visibility as _visibility,
 )
+from ._sweep import SweepTable, sweep
 
 __all__ = [
     "Environment",
+    "GridRegion",
+    "MissionIncomplete",
     "Region",
     "Strategy",
+    "SweepTable",
     "__version__",
     "corner_circle",
+    "corner_policy",
+    "corner_ratio",
     "environment",
     "explore",
     "explore_json",
     "load",
+    "load_region",
+    "roi",
+    "roi_json",
+    "sweep",
     "visibility",
 ]
 
@@ -117,3 +131,127 @@ def corner_circle(d: float) -> dict:
     """The circle strategy around a corner at distance ``d`` (the circle paper): its stops,
     ratio and bound, as ``stopscan corner circle --format json`` reports them."""
     return json.loads(_corner_circle(d))
+
+
+def corner_ratio(strategy: str, delta: float, stops_deg: Optional[Sequence[float]] = None,
+                 **options: Any) -> dict:
+    """The worst-case and asymptotic competitive ratios of a stop list around a corner
+    (``"unirec"``, ``"exprec"``, ``"circle"``, or ``"stops"`` with ``stops_deg``) at
+    δ = τ·v/D, as ``stopscan corner ratio --format json`` reports them. Options:
+    ``last_step`` ("capped" or "nominal"), ``exprec`` ("table_i" or "appendix"), ``route``
+    ("arc" or "chord"), ``allow_large`` (lift the soft limit on UNIREC's stops)."""
+    stops = None if stops_deg is None else [float(x) for x in stops_deg]
+    return json.loads(_corner_ratio(strategy, float(delta), stops, **options))
+
+
+def corner_policy(belief: str, **options: Any) -> dict:
+    """The corner paper's MDP policy for a belief over the corner's angle, in degrees
+    (``"uniform:0,180"``, ``"normal:60,5"``, ``"mix:0.5*normal:30,3+0.5*normal:90,3"``,
+    ``"histogram:FILE"``, ``"observed:FILE[,BUCKET_DEG]"``), as ``stopscan corner policy
+    --format json`` reports it. Options: ``truth``, ``distance`` (10 m), ``scan_time``
+    (2 s), ``move_time`` (0 s), ``speed`` (0.5 m/s), ``memory`` ("last": MDP2, or "none":
+    MDP1), ``reading`` ("conditional" or "literal"), ``step_deg`` (5), ``solver``
+    ("backward" or "general")."""
+    return json.loads(_corner_policy(belief, **options))
+
+
+class GridRegion:
+    """A region of interest on a grid: ``mask[row - origin[0], col - origin[1]]`` is True for
+    the region's cells; ``start`` is the (row, column) the team starts from."""
+
+    def __init__(self, mask: Any, start: Optional[Tuple[int, int]] = None,
+                 origin: Tuple[int, int] = (0, 0), cell_size: float = 1.0,
+                 name: str = "roi") -> None:
+        self.mask = np.asarray(mask, dtype=bool)
+        if self.mask.ndim != 2:
+            raise ValueError(f"a region's mask has two dimensions, got shape {self.mask.shape}")
+        self.origin = (int(origin[0]), int(origin[1]))
+        self.start = None if start is None else (int(start[0]), int(start[1]))
+        self.cell_size = float(cell_size)
+        self.name = name
+
+    @property
+    def cells(self) -> np.ndarray:
+        """The region's cells, (row, column), an (n, 2) int64 array in reading order."""
+        return np.argwhere(self.mask).astype(np.int64) + np.array(self.origin, dtype=np.int64)
+
+    def text_grid(self) -> str:
+        """The region as a text grid (``#`` region, ``.`` outside, ``S`` start), rows from
+        ``origin``."""
+        rows = [["#" if v else "." for v in row] for row in self.mask]
+        if self.start is not None:
+            r, c = self.start[0] - self.origin[0], self.start[1] - self.origin[1]
+            if not (0 <= r < self.mask.shape[0] and 0 <= c < self.mask.shape[1] and self.mask[r, c]):
+                raise ValueError(f"start {self.start} is not a cell of the region")
+            rows[r][c] = "S"
+        return "".join("".join(row) + "\n" for row in rows)
+
+    def __repr__(self) -> str:
+        return (f"GridRegion({self.name!r}: {int(self.mask.sum())} cells, start {self.start}, "
+                f"cell {self.cell_size} m)")
+
+
+def load_region(path: Union[str, os.PathLike], **options: Any) -> GridRegion:
+    """Reads a region of interest as ``stopscan roi --grid`` does: a text grid, a PNG/PGM
+    mask (``cell_px`` pixels per cell, ``invert_mask``), or a polygon file through its outer
+    grid approximation (``cell_size`` metres). ``start`` (row, column) where the file has
+    none."""
+    name, cells, start, cell_size = _load_region(os.fspath(path), **options)
+    lo = cells.min(axis=0)
+    hi = cells.max(axis=0)
+    mask = np.zeros((int(hi[0] - lo[0] + 1), int(hi[1] - lo[1] + 1)), dtype=bool)
+    mask[cells[:, 0] - lo[0], cells[:, 1] - lo[1]] = True
+    return GridRegion(mask, start, (int(lo[0]), int(lo[1])), cell_size, name)
+
+
+class MissionIncomplete(RuntimeError):
+    """A mission whose robots gave up; ``record`` is its run record (as the CLI writes it
+    before it fails)."""
+
+    def __init__(self, message: str, record: dict) -> None:
+        super().__init__(message)
+        self.record = record
+
+
+def roi_json(region: Any = None, **options: Any) -> str:
+    """The run record of a region-of-interest mission as JSON text, exactly as ``stopscan roi
+    --out`` writes it. ``region`` is a file (text grid, PNG/PGM mask, polygon), a
+    ``GridRegion``, or a 2-D boolean array (rows × columns, True inside; the start is
+    ``start=(row, col)``, by default the first cell in reading order); or give
+    ``random=CELLS`` and ``seed``. Options as ``stopscan roi``'s flags: ``robots``,
+    ``robot_speed``, ``roi_speed``, ``roi_heading_deg``, ``battery_s``, ``scan_time``,
+    ``move_time``, ``cell_size``, ``cell_px``, ``invert_mask``, ``start``, ``camera``,
+    ``frames``, ``search_box`` (row0, col0, row1, col1), ``launch``, ``paths``, ``seed``, and
+    ``svg``, ``report``, ``mcap`` (files to write)."""
+    for k in ("svg", "report", "mcap"):
+        if options.get(k) is not None:
+            options[k] = os.fspath(options[k])
+    if region is None:
+        return _roi_json(None, **options)
+    if isinstance(region, (str, os.PathLike)):
+        return _roi_json(os.fspath(region), **options)
+    if not isinstance(region, GridRegion):
+        region = GridRegion(region, options.pop("start", None),
+                            cell_size=options.get("cell_size", 1.0),
+                            name=options.pop("name", "roi"))
+    else:
+        if "start" in options:
+            region = GridRegion(region.mask, options.pop("start"), region.origin,
+                                region.cell_size, region.name)
+        options.setdefault("cell_size", region.cell_size)
+    if region.origin != (0, 0):
+        raise ValueError("a region given in place has its origin at (0, 0): its cells are "
+                         f"rows and columns of its mask (origin {region.origin}); give the file")
+    options["name"] = options.get("name", region.name)
+    return _roi_json(None, grid=region.text_grid(), **options)
+
+
+def roi(region: Any = None, **options: Any) -> dict:
+    """Flies a team over a region of interest (Algorithm 1 of the ROI paper) and returns the
+    run record as a dict (see ``roi_json`` for the arguments). Raises ``MissionIncomplete``,
+    with the record attached, when robots gave up."""
+    record = json.loads(roi_json(region, **options))
+    if record.get("failures"):
+        raise MissionIncomplete("the mission did not complete: " + "; ".join(record["failures"]),
+                                record)
+    return record

@@ -1,5 +1,5 @@
 from os import PathLike
-from typing import Any, Literal, Optional, Tuple, TypedDict, Union
+from typing import Any, Callable, Iterator, Literal, Optional, Sequence, Tuple, TypedDict, Union
 
 import numpy as np
 import numpy.typing as npt
@@ -91,3 +91,115 @@ def explore_json(
 ) -> str: ...
 def explore(domain: Domain, start: Optional[Any] = None, **options: Any) -> dict[str, Any]: ...
 def corner_circle(d: float) -> dict[str, Any]: ...
+def corner_ratio(
+    strategy: Literal["unirec", "exprec", "circle", "stops"],
+    delta: float,
+    stops_deg: Optional[Sequence[float]] = None,
+    *,
+    last_step: Literal["capped", "nominal"] = "capped",
+    exprec: Literal["table_i", "appendix"] = "table_i",
+    route: Literal["arc", "chord"] = "arc",
+    allow_large: bool = False,
+) -> dict[str, Any]: ...
+def corner_policy(
+    belief: str,
+    *,
+    truth: Optional[str] = None,
+    distance: float = 10.0,
+    scan_time: float = 2.0,
+    move_time: float = 0.0,
+    speed: float = 0.5,
+    memory: Literal["none", "last"] = "last",
+    reading: Literal["conditional", "literal"] = "conditional",
+    step_deg: float = 5.0,
+    solver: Literal["backward", "general"] = "backward",
+) -> dict[str, Any]: ...
+
+Cell = Tuple[int, int]
+
+class GridRegion:
+    mask: np.ndarray
+    origin: Cell
+    start: Optional[Cell]
+    cell_size: float
+    name: str
+    def __init__(
+        self,
+        mask: Any,
+        start: Optional[Cell] = None,
+        origin: Cell = (0, 0),
+        cell_size: float = 1.0,
+        name: str = "roi",
+    ) -> None: ...
+    @property
+    def cells(self) -> np.ndarray: ...
+    def text_grid(self) -> str: ...
+
+def load_region(
+    path: Union[str, PathLike[str]],
+    *,
+    cell_size: float = 1.0,
+    cell_px: int = 1,
+    invert_mask: bool = False,
+    start: Optional[Cell] = None,
+) -> GridRegion: ...
+
+class MissionIncomplete(RuntimeError):
+    record: dict[str, Any]
+
+def roi_json(
+    region: Union[str, PathLike[str], GridRegion, np.ndarray, None] = None,
+    *,
+    random: Optional[int] = None,
+    robots: int = 1,
+    cell_size: float = 1.0,
+    cell_px: int = 1,
+    invert_mask: bool = False,
+    start: Optional[Cell] = None,
+    name: str = "roi",
+    robot_speed: float = 1.0,
+    roi_speed: float = 0.0,
+    roi_heading_deg: float = 0.0,
+    battery_s: Optional[float] = None,
+    scan_time: float = 0.0,
+    move_time: float = 0.0,
+    camera: bool = False,
+    frames: int = 5,
+    search_box: Optional[Tuple[int, int, int, int]] = None,
+    launch: Optional[Cell] = None,
+    paths: bool = True,
+    seed: int = 0,
+    svg: Union[str, PathLike[str], None] = None,
+    report: Union[str, PathLike[str], None] = None,
+    mcap: Union[str, PathLike[str], None] = None,
+    allow_large: bool = False,
+) -> str: ...
+def roi(region: Union[str, PathLike[str], GridRegion, np.ndarray, None] = None, **options: Any) -> dict[str, Any]: ...
+
+class SweepTable:
+    rows: list[dict[str, Any]]
+    backend: str
+    def __len__(self) -> int: ...
+    def __iter__(self) -> Iterator[dict[str, Any]]: ...
+    def __getitem__(self, i: int) -> dict[str, Any]: ...
+    @property
+    def columns(self) -> list[str]: ...
+    def csv(self) -> str: ...
+    def write_csv(self, path: Union[str, PathLike[str]]) -> None: ...
+    def to_pandas(self) -> Any: ...
+
+def sweep(
+    envs: Union[str, PathLike[str], Sequence[Union[str, PathLike[str]]]],
+    strategy: Union[str, Sequence[str]] = "all",
+    *,
+    scan_time: float = 1.0,
+    move_time: float = 0.0,
+    speed: float = 1.0,
+    range: Optional[float] = None,
+    simplify: Optional[float] = None,
+    bounds_seconds: Optional[float] = None,
+    backend: Literal["auto", "serial", "ray"] = "auto",
+    address: Optional[str] = None,
+    workers: Optional[int] = None,
+    progress: Union[bool, Callable[[int, int], None]] = False,
+) -> SweepTable: ...

@@ -375,8 +375,9 @@ impl SweepRow {
     }
 }
 
-/// An environment to sweep.
-#[derive(Debug, Clone)]
+/// An environment to sweep (serialisable, so that a sweep's driver can load it once and hand
+/// it to runs on other machines).
+#[derive(Debug, Clone, serde::Serialize, serde::Deserialize)]
 pub struct SweepInput {
     /// Its name (the file name), the sweep rows' `environment`.
     pub name: String,
@@ -399,14 +400,8 @@ pub fn sweep(
     tick: &(dyn Fn() + Sync),
 ) -> Vec<SweepRow> {
     use rayon::prelude::*;
-    let lower: Vec<Option<crate::offline::polygon::LowerBounds>> = inputs
-        .par_iter()
-        .map(|input| {
-            let vis = crate::algorithm::visibility::Visibility::new(input.domain.clone()).ok()?;
-            let deadline = crate::offline::polygon::deadline_in(bounds_seconds);
-            crate::offline::polygon::lower_bounds(&vis, input.start, range, deadline).ok()
-        })
-        .collect();
+    let lower: Vec<Option<crate::offline::polygon::LowerBounds>> =
+        inputs.par_iter().map(|input| sweep_lower_bounds(input, range, bounds_seconds)).collect();
     let jobs: Vec<(usize, usize)> =
         (0..inputs.len()).flat_map(|i| (0..strategies.len()).map(move |s| (i, s))).collect();
     jobs.par_iter()
@@ -418,6 +413,31 @@ pub fn sweep(
             row
         })
         .collect()
+}
+
+/// One run of a sweep on its own (a task of a sweep spread over machines): `strategy` on
+/// `input`, its lower bounds computed here. The row is [`sweep`]'s for the same run, as long
+/// as the bounds finish within `bounds_seconds` in both.
+pub fn sweep_single(
+    input: &SweepInput,
+    strategy: &str,
+    cost: &CostModel,
+    range: Option<f64>,
+    bounds_seconds: f64,
+) -> SweepRow {
+    let lower = sweep_lower_bounds(input, range, bounds_seconds);
+    sweep_one(&input.name, &input.domain, input.start, strategy, cost, range, lower.as_ref())
+}
+
+/// An input's lower bounds, within `bounds_seconds` (`None` if they cannot be computed).
+fn sweep_lower_bounds(
+    input: &SweepInput,
+    range: Option<f64>,
+    bounds_seconds: f64,
+) -> Option<crate::offline::polygon::LowerBounds> {
+    let vis = crate::algorithm::visibility::Visibility::new(input.domain.clone()).ok()?;
+    let deadline = crate::offline::polygon::deadline_in(bounds_seconds);
+    crate::offline::polygon::lower_bounds(&vis, input.start, range, deadline).ok()
 }
 
 fn sweep_one(

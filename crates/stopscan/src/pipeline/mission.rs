@@ -62,6 +62,19 @@ pub enum RegionSource {
         /// For masks: the region is dark.
         invert: bool,
     },
+    /// A text grid given in place (`#` region, `.` outside, `S` start; see
+    /// [`crate::io::grid::parse_text_grid`]), as the Python bindings hand over an array: the
+    /// state keeps the text, so the mission resumes without the caller's data.
+    Grid {
+        /// The region's name (the run record's).
+        name: String,
+        /// The text grid.
+        text: String,
+        /// The side of a cell, metres.
+        cell_size: f64,
+        /// The start cell, for a grid without `S`.
+        start: Option<Cell>,
+    },
 }
 
 impl RegionSource {
@@ -82,6 +95,11 @@ impl RegionSource {
                     invert: *invert,
                 };
                 crate::io::grid::read_roi(path, &opts)?
+            }
+            Self::Grid { name, text, cell_size, start } => {
+                let opts =
+                    GridOptions { cell_size: *cell_size, start: *start, ..GridOptions::default() };
+                crate::io::grid::parse_text_grid(text, name, name, &opts)?
             }
         })
     }
@@ -448,7 +466,7 @@ impl MissionRun {
     pub fn start(spec: MissionSpec, roi: GridRoi) -> Result<Self, MissionRunError> {
         let map = matches!(spec.sensor, GridSensor::Camera(_))
             || spec.search.is_some()
-            || matches!(spec.source, RegionSource::File { .. });
+            || matches!(spec.source, RegionSource::File { .. } | RegionSource::Grid { .. });
         let plan = MissionPlan {
             robots: spec.robots,
             cost: spec.cost,
@@ -480,9 +498,10 @@ impl MissionRun {
     /// Flies the mission to its end: the trace is streamed as it goes; with a journal `save`,
     /// the state is written to it first (atomically, replacing it: a resumed mission starts a
     /// compact journal from where it stands) and then one line per step, before the next
-    /// step; the run record and the replay are written to the state's `out` and `svg`.
-    /// `progress` hears the steps and the mission time every 256 steps. A resume from any
-    /// step ends with the same record.
+    /// step; the run record and the replay are written to the state's `out` and `svg` (and
+    /// the browser replay and the MCAP recording where the state names them). `progress`
+    /// hears the steps and the mission time every 256 steps. A resume from any step ends with
+    /// the same record.
     ///
     /// # Errors
     /// [`MissionRunError`]: a strategy misbehaves, the mission exceeds its step limit, or an
@@ -493,6 +512,37 @@ impl MissionRun {
         save: Option<&Path>,
         progress: Progress,
     ) -> Result<MissionOutcome, MissionRunError> {
+        let record = self.fly_record(save, progress)?;
+        let file = &self.state;
+        atomic::write_json(&file.out, &record)?;
+        atomic::write_bytes(&file.svg, self.svg(&record).as_bytes())?;
+        if let Some(r) = &file.report {
+            atomic::write_bytes(r, self.report(&record).as_bytes())?;
+        }
+        if let Some(m) = &file.mcap {
+            atomic::write_bytes(m, &self.mcap(&record)?)?;
+        }
+        Ok(MissionOutcome {
+            record,
+            out: file.out.clone(),
+            svg: file.svg.clone(),
+            report: file.report.clone(),
+            mcap: file.mcap.clone(),
+        })
+    }
+
+    /// Flies the mission to its end, as [`MissionRun::fly`] does, and returns the run record
+    /// without writing it or any picture: only the trace (where the state names one) and the
+    /// journal `save` are written. The pictures are [`MissionRun::svg`],
+    /// [`MissionRun::report`] and [`MissionRun::mcap`].
+    ///
+    /// # Errors
+    /// As [`MissionRun::fly`], but for the outputs it does not write.
+    pub fn fly_record(
+        &mut self,
+        save: Option<&Path>,
+        progress: Progress,
+    ) -> Result<GridRunRecord, MissionRunError> {
         let (file, world) = (&mut self.state, &mut self.world);
         let bytes = Rc::new(Shared::new(file.trace_len));
         let mut trace = match &file.trace {
@@ -546,27 +596,33 @@ impl MissionRun {
                 break;
             }
         }
-        let record = GridRunRecord::new(world, &file.mission, file.seed);
-        atomic::write_json(&file.out, &record)?;
-        let mapped = file.mission.plan.map.then(|| file.mission.marks.positive());
-        let svg = crate::render::roi_svg(world.roi(), mapped.as_deref(), &record);
-        atomic::write_bytes(&file.svg, svg.as_bytes())?;
-        if let Some(r) = &file.report {
-            let html = crate::render::roi_report(world.roi(), mapped.as_deref(), &record);
-            atomic::write_bytes(r, html.as_bytes())?;
-        }
-        if let Some(m) = &file.mcap {
-            let bytes = crate::render::roi_mcap(world.roi(), mapped.as_deref(), &record)
-                .map_err(|e| MissionRunError::Mcap(e.to_string()))?;
-            atomic::write_bytes(m, &bytes)?;
-        }
-        Ok(MissionOutcome {
-            record,
-            out: file.out.clone(),
-            svg: file.svg.clone(),
-            report: file.report.clone(),
-            mcap: file.mcap.clone(),
-        })
+        Ok(GridRunRecord::new(world, &file.mission, file.seed))
+    }
+
+    /// The cells the team mapped as region, for missions that build a map.
+    fn mapped(&self) -> Option<Vec<Cell>> {
+        self.state.mission.plan.map.then(|| self.state.mission.marks.positive())
+    }
+
+    /// The SVG replay of the mission that ended with `record`.
+    #[must_use]
+    pub fn svg(&self, record: &GridRunRecord) -> String {
+        crate::render::roi_svg(self.world.roi(), self.mapped().as_deref(), record)
+    }
+
+    /// The browser replay (`report.html`) of the mission that ended with `record`.
+    #[must_use]
+    pub fn report(&self, record: &GridRunRecord) -> String {
+        crate::render::roi_report(self.world.roi(), self.mapped().as_deref(), record)
+    }
+
+    /// The MCAP recording of the mission that ended with `record`.
+    ///
+    /// # Errors
+    /// [`MissionRunError::Mcap`] if the recording cannot be made.
+    pub fn mcap(&self, record: &GridRunRecord) -> Result<Vec<u8>, MissionRunError> {
+        crate::render::roi_mcap(self.world.roi(), self.mapped().as_deref(), record)
+            .map_err(|e| MissionRunError::Mcap(e.to_string()))
     }
 }
 

@@ -14,6 +14,7 @@
 //!   with a footprint (`bench floors`);
 //! - [`mission`]: a region-of-interest mission and its state file (`stopscan-mission/2`),
 //!   stepped, saved and resumed (`roi`);
+//! - [`limits`]: the soft size limits the CLI and the bindings share;
 //! - [`corner`]: the corner commands' results as typed, serialisable reports;
 //! - [`reproduce`]: running paper reproductions and writing their files.
 //!
@@ -22,6 +23,7 @@
 pub mod corner;
 pub mod explore;
 pub mod floors;
+pub mod limits;
 pub mod mission;
 pub mod reproduce;
 pub mod serve;

@@ -116,6 +116,76 @@ fn file_name(path: &Path) -> String {
     path.file_name().and_then(|n| n.to_str()).unwrap_or("?").to_string()
 }
 
+/// Checks a sweep's options and returns the strategies it runs ([`strategies`] of
+/// `options.strategy`). A robot (a footprint or a window rule) is refused:
+/// [`ExploreError::RobotInSweep`], as the rows are a point robot's.
+///
+/// # Errors
+/// [`ExploreError`] for an unknown strategy or bad options.
+pub fn sweep_strategies(options: &ExploreOptions) -> Result<Vec<&'static str>, ExploreError> {
+    let strategies = strategies(&options.strategy)?;
+    check_range(&options.strategy, options.range)?;
+    check_budgets(&options.limits)?;
+    check_simplify(options.simplify)?;
+    // The rows are a point robot's (coverage of the whole free space, the paper's bounds):
+    // a robot's options would be silently ignored, so they are refused.
+    if !options.footprint.is_point() {
+        return Err(ExploreError::RobotInSweep("a footprint (--robot-radius, --footprint)"));
+    }
+    if options.lidar.is_some() {
+        return Err(ExploreError::RobotInSweep("raw scans (--sensor, --odometry-drift)"));
+    }
+    if options.beams.is_some()
+        || options.min_feature > 0.0
+        || options.min_window.is_some()
+        || options.min_pocket.is_some()
+        || options.pocket_cap != super::explore::DEFAULT_POCKET_CAP
+    {
+        return Err(ExploreError::RobotInSweep(
+            "a window rule (--beams, --min-feature, --min-window, --min-pocket, --pocket-cap)",
+        ));
+    }
+    Ok(strategies)
+}
+
+/// One file of a sweep loaded (a ROS map simplified within `simplify`), named by its file
+/// name; or why it does not load, with its causes.
+///
+/// # Errors
+/// The message a sweep's rows carry for a file that does not load.
+pub fn load_input(file: &Path, simplify: Option<f64>) -> Result<SweepInput, String> {
+    let map = RosMapOptions { simplify, ..RosMapOptions::default() };
+    let (env, start) =
+        crate::io::sweep::read_with_start(file, &map).map_err(|e| super::error_message(&e))?;
+    Ok(SweepInput { name: file_name(file), domain: env.domain, start })
+}
+
+/// One run of a sweep, on its own: the row [`sweep_dir`] gives `strategy` on `input` with
+/// `options` (checked by [`sweep_strategies`]), as long as the lower bounds finish within
+/// `options.limits.bounds_seconds` in both. A sweep spread over machines runs these.
+#[must_use]
+pub fn sweep_run(input: &SweepInput, strategy: &str, options: &ExploreOptions) -> SweepRow {
+    crate::experiment::polygon::sweep_single(
+        input,
+        strategy,
+        &options.cost,
+        options.range,
+        options.limits.bounds_seconds,
+    )
+}
+
+/// Writes a sweep's rows as its CSV file (a header, then one line per row).
+///
+/// # Errors
+/// What writing to `w` gives.
+pub fn write_csv(rows: &[SweepRow], w: impl std::io::Write) -> std::io::Result<()> {
+    let mut csv = csv::Writer::from_writer(w);
+    for r in rows {
+        csv.serialize(r.csv_row()).map_err(std::io::Error::other)?;
+    }
+    csv.flush()
+}
+
 /// Explores every environment file of `dir` ([`environment_files`]) with `options.strategy`
 /// (or `all`), in parallel; rows come back in file order, strategies in registry order,
 /// whatever the thread count. Each file's lower bounds are computed once, within
@@ -143,46 +213,22 @@ pub fn sweep_dir(
             .map(|(_, f)| f)
             .collect();
     }
-    let strategies = strategies(&options.strategy)?;
-    check_range(&options.strategy, options.range)?;
+    let strategies = sweep_strategies(options)?;
     if options.range.is_none() && strategies.contains(&"range_limited") {
         on(SweepEvent::Warning(&SweepWarning::UnlimitedRange));
     }
-    check_budgets(&options.limits)?;
-    check_simplify(options.simplify)?;
-    // The rows are a point robot's (coverage of the whole free space, the paper's bounds):
-    // a robot's options would be silently ignored, so they are refused.
-    if !options.footprint.is_point() {
-        return Err(ExploreError::RobotInSweep("a footprint (--robot-radius, --footprint)"));
-    }
-    if options.lidar.is_some() {
-        return Err(ExploreError::RobotInSweep("raw scans (--sensor, --odometry-drift)"));
-    }
-    if options.beams.is_some()
-        || options.min_feature > 0.0
-        || options.min_window.is_some()
-        || options.min_pocket.is_some()
-        || options.pocket_cap != super::explore::DEFAULT_POCKET_CAP
-    {
-        return Err(ExploreError::RobotInSweep(
-            "a window rule (--beams, --min-feature, --min-window, --min-pocket, --pocket-cap)",
-        ));
-    }
-    let map = RosMapOptions { simplify: options.simplify, ..RosMapOptions::default() };
     // Indices into the inputs for the files that loaded, their errors for the others.
     let mut inputs: Vec<SweepInput> = Vec::new();
     let mut loaded: Vec<Result<usize, String>> = Vec::new();
     for f in &files {
-        let name = file_name(f);
-        match crate::io::sweep::read_with_start(f, &map) {
-            Ok((env, start)) => {
+        match load_input(f, options.simplify) {
+            Ok(input) => {
                 loaded.push(Ok(inputs.len()));
-                inputs.push(SweepInput { name, domain: env.domain, start });
+                inputs.push(input);
             }
-            Err(e) => {
-                let error = super::error_message(&e);
+            Err(error) => {
                 on(SweepEvent::Warning(&SweepWarning::NotSwept {
-                    file: name,
+                    file: file_name(f),
                     error: error.clone(),
                 }));
                 loaded.push(Err(error));
