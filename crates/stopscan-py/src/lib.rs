@@ -187,7 +187,9 @@ fn from_geojson(text: &str, name: &str) -> PyResult<PyEnvironment> {
 #[pyclass(frozen, module = "stopscan", name = "Region")]
 struct PyRegion {
     region: VisibilityRegion,
-    area: f64,
+    /// The area, computed in the environment's local frame where that is not the input's
+    /// (far from the origin, input coordinates lose digits); `None`: computed when asked.
+    area: Option<f64>,
 }
 
 #[pymethods]
@@ -207,7 +209,7 @@ impl PyRegion {
     /// The area, square metres.
     #[getter]
     fn area(&self) -> f64 {
-        self.area
+        self.area.unwrap_or_else(|| self.region.area())
     }
 
     /// The windows: shape (k, 2, 2), each from its first end to its second.
@@ -246,54 +248,105 @@ impl PyRegion {
             self.region.viewpoint[0],
             self.region.viewpoint[1],
             self.region.polygon.len(),
-            self.area
+            self.area()
         )
     }
 }
 
+/// A region handed to Python, with its area where it was taken ([`PyRegion::area`]).
+type Seen = (VisibilityRegion, Option<f64>);
+
+/// The regions seen from `queries` (input coordinates), one after the other with one scratch.
+fn regions_from(
+    vis: &Visibility,
+    frame: stopscan::geometry::Frame,
+    range: Option<f64>,
+    queries: &[Point],
+) -> Result<Vec<Seen>, String> {
+    let mut out = Vec::with_capacity(queries.len());
+    let mut scratch = expansion::Scratch::default();
+    let mut region = VisibilityRegion::default();
+    for &q in queries {
+        let at = |e: VisibilityError| format!("point ({}, {}): {e}", q[0], q[1]);
+        let local = frame.to_local(q);
+        match range {
+            None => vis.query_into(local, &mut scratch, &mut region).map_err(at)?,
+            Some(r) => {
+                let rr = vis.query_range(local, r).map_err(at)?;
+                let polygon = rr.to_polygon(r * 1e-4);
+                region =
+                    VisibilityRegion { viewpoint: rr.viewpoint, polygon, boundary: Vec::new() };
+            }
+        }
+        // In the input frame the region is handed over as it is, and its area waits until it
+        // is asked for; elsewhere it is mapped and its area taken here.
+        if frame.origin == [0.0, 0.0] {
+            // The region is moved out and the next query writes into fresh buffers of the
+            // same capacity: one allocation each, no copy, no regrowth.
+            let next = VisibilityRegion {
+                viewpoint: region.viewpoint,
+                polygon: Vec::with_capacity(region.polygon.capacity()),
+                boundary: Vec::with_capacity(region.boundary.capacity()),
+            };
+            out.push((std::mem::replace(&mut region, next), None));
+        } else {
+            out.push((region.mapped(|p| frame.to_input(p)), Some(region.area())));
+        }
+    }
+    Ok(out)
+}
+
+/// Points per parallel task: small enough to share 1,000 queries among the cores, large
+/// enough that a task's scratch is reused.
+const CHUNK: usize = 64;
+
 /// The regions seen from each of `points` (shape (n, 2), input coordinates), with a sensor of
 /// `range` metres if given (arcs as chords within range·1e-4, as the CLI). The GIL is
-/// released while they are computed.
+/// released while they are computed, on `threads` threads (default: every core; 1: this
+/// thread only), in chunks of 64 points; the regions come back in the points' order, and an
+/// error names the first point (in that order) that has one.
 #[pyfunction]
-#[pyo3(signature = (env, points, range=None))]
+#[pyo3(signature = (env, points, range=None, threads=None))]
 #[allow(clippy::needless_pass_by_value)] // Python hands over owned arguments
 fn visibility(
     py: Python<'_>,
     env: &PyEnvironment,
     points: PyReadonlyArray2<'_, f64>,
     range: Option<f64>,
+    threads: Option<usize>,
 ) -> PyResult<Vec<PyRegion>> {
+    use rayon::prelude::*;
     let queries = points_of(&points)?;
     if let Some(r) = range
         && !(r.is_finite() && r > 0.0)
     {
         return Err(value_error(format!("range must be a finite positive distance, got {r}")));
     }
+    if threads == Some(0) {
+        return Err(value_error("threads must be at least 1"));
+    }
     let frame = env.env.frame;
-    let regions = py.detach(move || -> Result<Vec<(VisibilityRegion, f64)>, String> {
+    let regions = py.detach(move || -> Result<Vec<Seen>, String> {
         let vis = env.visibility()?;
+        let threads = threads.unwrap_or_else(rayon::current_num_threads);
+        if threads == 1 || queries.len() <= CHUNK {
+            return regions_from(vis, frame, range, &queries);
+        }
+        let parts = || -> Vec<Result<Vec<Seen>, String>> {
+            queries.par_chunks(CHUNK).map(|c| regions_from(vis, frame, range, c)).collect()
+        };
+        let parts = if threads == rayon::current_num_threads() {
+            parts()
+        } else {
+            rayon::ThreadPoolBuilder::new()
+                .num_threads(threads)
+                .build()
+                .map_err(|e| e.to_string())?
+                .install(parts)
+        };
         let mut out = Vec::with_capacity(queries.len());
-        let mut scratch = expansion::Scratch::default();
-        let mut region = VisibilityRegion::default();
-        for q in queries {
-            let at = |e: VisibilityError| format!("point ({}, {}): {e}", q[0], q[1]);
-            let local = frame.to_local(q);
-            match range {
-                None => vis.query_into(local, &mut scratch, &mut region).map_err(at)?,
-                Some(r) => {
-                    let rr = vis.query_range(local, r).map_err(at)?;
-                    let polygon = rr.to_polygon(r * 1e-4);
-                    region =
-                        VisibilityRegion { viewpoint: rr.viewpoint, polygon, boundary: Vec::new() };
-                }
-            }
-            let area = region.area();
-            let seen = if frame.origin == [0.0, 0.0] {
-                region.clone()
-            } else {
-                region.mapped(|p| frame.to_input(p))
-            };
-            out.push((seen, area));
+        for p in parts {
+            out.extend(p?);
         }
         Ok(out)
     });

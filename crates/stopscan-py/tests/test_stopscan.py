@@ -128,6 +128,35 @@ def test_visibility_matches_a_brute_force_and_the_cli():
         np.testing.assert_array_equal(np.array(region["polygon"]), r.vertices)
 
 
+def test_visibility_on_every_core_equals_one_thread_in_order():
+    office = stopscan.load(OFFICE)
+    rng = np.random.default_rng(5)
+    lo, hi = office.outer.min(axis=0), office.outer.max(axis=0)
+    outer, holes = office.outer.tolist(), [h.tolist() for h in office.holes]
+    points = []
+    while len(points) < 300:
+        p = rng.uniform(lo, hi)
+        if inside(outer, p) and not any(inside(h, p) for h in holes):
+            points.append(p)
+    points = np.array(points)
+    one = stopscan.visibility(office, points, threads=1)
+    for threads in (None, 2, 3):
+        many = stopscan.visibility(office, points, threads=threads)
+        assert [r.viewpoint for r in many] == [tuple(p) for p in points.tolist()]
+        for a, b in zip(one, many):
+            np.testing.assert_array_equal(a.vertices, b.vertices)
+            np.testing.assert_array_equal(a.windows, b.windows)
+            assert a.area == b.area
+    # The error names the first bad point in the points' order, whichever thread met it.
+    bad = points.copy()
+    bad[200] = (-1e3, -1e3)
+    bad[250] = (-2e3, -2e3)
+    with pytest.raises(ValueError, match=r"point \(-1000"):
+        stopscan.visibility(office, bad)
+    with pytest.raises(ValueError, match="threads"):
+        stopscan.visibility(office, points, threads=0)
+
+
 def test_explore_records_equal_the_cli_byte_for_byte(tmp_path):
     for strategy, extra in [("depth_first", {}), ("cost_aware", {"robot_radius": 0.2})]:
         out = tmp_path / f"{strategy}.json"

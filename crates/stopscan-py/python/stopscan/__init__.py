@@ -106,10 +106,12 @@ def _point(p: Any) -> Point:
     return (float(a[0, 0]), float(a[0, 1]))
 
 
-def visibility(domain: Any, points: Any, range: Optional[float] = None) -> list:
+def visibility(domain: Any, points: Any, range: Optional[float] = None,
+               threads: Optional[int] = None) -> list:
     """The region seen from each point (an (n, 2) array, or shapely points), with a sensor
-    of ``range`` metres if given. Returns one ``Region`` per point."""
-    return _visibility(environment(domain), _points(points), range)
+    of ``range`` metres if given. Returns one ``Region`` per point, in order. The queries run
+    on ``threads`` threads (every core by default; 1 for this thread only), without the GIL."""
+    return _visibility(environment(domain), _points(points), range, threads)
 
 
 def explore_json(domain: Any, start: Optional[Any] = None, **options: Any) -> str:
