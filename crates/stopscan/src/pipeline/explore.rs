@@ -613,6 +613,7 @@ fn pictures(
             truth: r.stops.iter().map(|s| s.truth).collect(),
             estimate: r.stops.iter().map(|s| s.estimate).collect(),
         }),
+        frontiers: std::sync::OnceLock::new(),
     };
     (svg, replay)
 }

@@ -33,8 +33,6 @@ use std::io::{Cursor, Seek, Write};
 use serde_json::{Value, json};
 
 use super::report::{PolygonReplay, row_runs, scan_vertices};
-use crate::algorithm::cover::frontier_history;
-use crate::geometry::Location;
 use crate::kernel::Point;
 use crate::protocol::grid::Cell;
 use crate::protocol::laser::Pose;
@@ -553,8 +551,7 @@ pub fn polygon_mcap(replay: &PolygonReplay, record: &RunRecord) -> Result<Vec<u8
         )?;
     }
     let vertices = scan_vertices(&replay.path, &replay.regions, &replay.steps);
-    let inside = |p: Point| replay.domain.locate(p) == Location::Interior;
-    let history = frontier_history(&replay.regions, inside);
+    let history = replay.frontier_history();
     for (k, region) in replay.regions.iter().enumerate() {
         let at = replay.scan_times.get(k).copied().unwrap_or(0.0);
         let id = format!("scan-{}", k + 1);
@@ -567,7 +564,7 @@ pub fn polygon_mcap(replay: &PolygonReplay, record: &RunRecord) -> Result<Vec<u8
             &scene(vec![entity(&id, at, vec![outline], vec![tri], vec![])]),
         )?;
         // The frontiers open after this scan: one entity, replaced at each step.
-        let open = open_after(&history, k + 1);
+        let open = open_after(history, k + 1);
         let lines = if open.is_empty() {
             vec![]
         } else {

@@ -58,6 +58,20 @@ pub struct PolygonReplay {
     pub total: Tally,
     /// The raw scans, when the run was driven from a simulated lidar.
     pub raw: Option<RawReplay>,
+    /// The frontiers' histories ([`PolygonReplay::frontier_history`]), computed on first use
+    /// and kept for the next picture (build with `Default::default()`).
+    pub frontiers: std::sync::OnceLock<Vec<crate::algorithm::cover::FrontierHistory>>,
+}
+
+impl PolygonReplay {
+    /// Each frontier of the scans and how its open parts shrank
+    /// ([`frontier_history`] in the free space's interior), computed once for the report and
+    /// the MCAP recording.
+    pub fn frontier_history(&self) -> &[crate::algorithm::cover::FrontierHistory] {
+        self.frontiers.get_or_init(|| {
+            frontier_history(&self.regions, |p: Point| self.domain.locate(p) == Location::Interior)
+        })
+    }
 }
 
 /// What a raw-scan run adds to its replay: each stop's scan as the lidar returned it, where
@@ -221,9 +235,9 @@ fn escape(s: &str) -> String {
 pub fn polygon_report(replay: &PolygonReplay, record: &RunRecord) -> String {
     let [lo, hi] = replay.domain.bounds();
     let r = Rounder::new((hi[0] - lo[0]).max(hi[1] - lo[1]));
-    let inside = |p: Point| replay.domain.locate(p) == Location::Interior;
-    let frontiers = frontier_history(&replay.regions, inside)
-        .into_iter()
+    let frontiers = replay
+        .frontier_history()
+        .iter()
         .map(|h| Frontier {
             scan: h.scan,
             a: r.point(h.from),

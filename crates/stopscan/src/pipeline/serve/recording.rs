@@ -95,27 +95,24 @@ fn request_messages(
     request: &Request,
     reply: &Reply,
 ) -> Result<String, McapError> {
-    let child =
-        |robot: Option<usize>| robot.map_or("base_link".to_string(), |r| format!("robot_{r}"));
+    // Every request reports where its robot stands: `odom → base_link` for one robot,
+    // `odom → robot_<i>` for a team's.
+    let (robot, p) = match request {
+        Request::Start(s) => (None, s.pose),
+        _ => request.team_fields().map(|(robot, _, p)| (robot, p)).unwrap_or_default(),
+    };
+    let child = robot.map_or("base_link".to_string(), |r| format!("robot_{r}"));
+    w.write(
+        "/tf",
+        "foxglove.FrameTransform",
+        at,
+        &frame_transform("odom", &child, at, p.x, p.y, p.theta),
+    )?;
     Ok(match request {
         Request::Start(s) => {
-            let p = s.pose;
-            w.write(
-                "/tf",
-                "foxglove.FrameTransform",
-                at,
-                &frame_transform("odom", "base_link", at, p.x, p.y, p.theta),
-            )?;
             format!("start: {} {}", s.family.name(), s.strategy.as_deref().unwrap_or(""))
         }
         Request::Scan(s) => {
-            let p = s.pose;
-            w.write(
-                "/tf",
-                "foxglove.FrameTransform",
-                at,
-                &frame_transform("odom", &child(s.robot), at, p.x, p.y, p.theta),
-            )?;
             if let Some(scan) = &s.scan {
                 let message = match &reply.localised {
                     Some(l) => {
@@ -134,25 +131,11 @@ fn request_messages(
             }
             format!("scan at ({:.3}, {:.3}) in odom", p.x, p.y)
         }
-        Request::Arrived(p) | Request::Found(p) | Request::Stop(p) => {
-            let q = p.pose;
-            w.write(
-                "/tf",
-                "foxglove.FrameTransform",
-                at,
-                &frame_transform("odom", &child(p.robot), at, q.x, q.y, q.theta),
-            )?;
-            format!("{} at ({:.3}, {:.3}) in odom", request.kind(), q.x, q.y)
+        Request::Arrived(_) | Request::Found(_) | Request::Stop(_) => {
+            format!("{} at ({:.3}, {:.3}) in odom", request.kind(), p.x, p.y)
         }
         Request::MoveFailed(f) => {
-            let q = f.pose;
-            w.write(
-                "/tf",
-                "foxglove.FrameTransform",
-                at,
-                &frame_transform("odom", &child(f.robot), at, q.x, q.y, q.theta),
-            )?;
-            format!("move failed ({}) at ({:.3}, {:.3}) in odom", f.reason.name(), q.x, q.y)
+            format!("move failed ({}) at ({:.3}, {:.3}) in odom", f.reason.name(), p.x, p.y)
         }
     })
 }
