@@ -233,7 +233,7 @@ fn bench_explore(a: &BenchArgs, g: &Global) -> anyhow::Result<()> {
         &["depth_first"],
         &stopscan::protocol::CostModel::default(),
         None,
-        0.0, // no lower bounds: the benchmark times the exploration
+        (0.0, None), // no lower bounds: the benchmark times the exploration
         &|| bar.inc(1),
     );
     let secs = t.elapsed().as_secs_f64();

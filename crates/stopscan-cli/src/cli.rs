@@ -453,6 +453,12 @@ pub(crate) struct ExploreArgs {
     /// Seconds for the lower bounds (valid when cut short, only weaker).
     #[arg(long, default_value_t = 5.0, allow_negative_numbers = true)]
     pub(crate) bounds_seconds: f64,
+    /// Steps for the lower bounds instead of --bounds-seconds: a budget that cuts them at
+    /// the same place on every machine and under any load, so that a sweep split across
+    /// machines gives the same rows. A step is one check of the budget: 100 to 1,000 steps
+    /// a second here, depending on the stage (a forest of 20 pillars needs 518).
+    #[arg(long, allow_negative_numbers = true, value_parser = count_at_least(1))]
+    pub(crate) bounds_steps: Option<usize>,
     /// The integer-programming solver: microlp (built in); cbc and highs when built with the
     /// cargo features of those names.
     #[arg(long, default_value = "microlp")]

@@ -60,6 +60,7 @@ fn options(a: &ExploreArgs, g: &Global) -> anyhow::Result<ExploreOptions> {
             optimum_seconds: a.optimum_seconds,
             optimum_nodes: a.optimum_nodes.map(|n| n as u64),
             bounds_seconds: a.bounds_seconds,
+            bounds_steps: a.bounds_steps.map(|n| n as u64),
             solver: Solver::by_name(&a.solver).map_err(|e| anyhow::anyhow!("--solver: {e}"))?,
         },
         seed: g.seed,

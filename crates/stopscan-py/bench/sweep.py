@@ -37,9 +37,9 @@ def main():
     p.add_argument("--workers", type=int, default=2)
     p.add_argument("--strategy", default="all")
     p.add_argument("--bin", default="target/release/stopscan")
-    # The lower bounds stop at a deadline (valid, only weaker when cut): with two runs per
-    # core competing, the CLI's 5 s would cut the largest forests' on Ray and not serially.
-    p.add_argument("--bounds-seconds", type=float, default=120.0)
+    # The lower bounds get a budget of steps, not the CLI's 5 s: a deadline cuts them where
+    # the machine's load puts it, and two runs per core compete on Ray, not serially.
+    p.add_argument("--bounds-steps", type=int, default=5000)
     a = p.parse_args()
     import ray
 
@@ -56,11 +56,11 @@ def main():
         stopscan.sweep(stopscan._sweep._files(folder)[:1], "depth_first", backend="ray")
         t = time.perf_counter()
         serial = stopscan.sweep(folder, a.strategy, backend="serial",
-                                bounds_seconds=a.bounds_seconds)
+                                bounds_steps=a.bounds_steps)
         serial_s = time.perf_counter() - t
         t = time.perf_counter()
         on_ray = stopscan.sweep(folder, a.strategy, backend="ray",
-                                bounds_seconds=a.bounds_seconds)
+                                bounds_steps=a.bounds_steps)
         ray_s = time.perf_counter() - t
         ray.shutdown()
     assert on_ray == serial, "the Ray sweep's table differs from the serial one"
@@ -72,7 +72,7 @@ def main():
         "ray_s": round(ray_s, 3),
         "speedup": round(serial_s / ray_s, 3),
         "ray_start_s": round(init, 3),
-        "bounds_seconds": a.bounds_seconds,
+        "bounds_steps": a.bounds_steps,
         "equal": True,
     }, indent=2))
 

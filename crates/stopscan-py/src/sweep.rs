@@ -13,6 +13,7 @@ use stopscan::pipeline::sweep;
 use crate::{explore_options, value_error};
 
 /// The sweep's options from the keyword arguments (a point robot's: sweeps refuse a robot).
+#[allow(clippy::too_many_arguments)] // Python's keywords
 fn options(
     strategy: &str,
     scan_time: f64,
@@ -21,12 +22,14 @@ fn options(
     range: Option<f64>,
     simplify: Option<f64>,
     bounds_seconds: Option<f64>,
+    bounds_steps: Option<u64>,
 ) -> PyResult<ExploreOptions> {
     let mut o = explore_options(strategy, scan_time, move_time, speed, range, None, 0, None, None)?;
     o.simplify = simplify;
     if let Some(b) = bounds_seconds {
         o.limits.bounds_seconds = b;
     }
+    o.limits.bounds_steps = bounds_steps;
     Ok(o)
 }
 
@@ -52,7 +55,8 @@ pub(crate) fn sweep_files(dir: PathBuf) -> PyResult<Vec<PathBuf>> {
 /// Checks a sweep's options: returns its strategies (every registered one for `all`) and a
 /// warning for the caller to show, if any.
 #[pyfunction]
-#[pyo3(signature = (strategy="all", scan_time=1.0, move_time=0.0, speed=1.0, range=None, simplify=None, bounds_seconds=None))]
+#[allow(clippy::too_many_arguments)] // Python's keywords
+#[pyo3(signature = (strategy="all", scan_time=1.0, move_time=0.0, speed=1.0, range=None, simplify=None, bounds_seconds=None, bounds_steps=None))]
 pub(crate) fn sweep_check(
     strategy: &str,
     scan_time: f64,
@@ -61,8 +65,18 @@ pub(crate) fn sweep_check(
     range: Option<f64>,
     simplify: Option<f64>,
     bounds_seconds: Option<f64>,
+    bounds_steps: Option<u64>,
 ) -> PyResult<(Vec<String>, Option<String>)> {
-    let o = options(strategy, scan_time, move_time, speed, range, simplify, bounds_seconds)?;
+    let o = options(
+        strategy,
+        scan_time,
+        move_time,
+        speed,
+        range,
+        simplify,
+        bounds_seconds,
+        bounds_steps,
+    )?;
     let strategies = sweep::sweep_strategies(&o).map_err(value_error)?;
     let warning = (range.is_none() && strategies.contains(&"range_limited"))
         .then(|| sweep::SweepWarning::UnlimitedRange.to_string());
@@ -89,7 +103,7 @@ pub(crate) fn sweep_load(
 /// One run of a sweep: `strategy` on the input `sweep_load` gave, as (the row's JSON text,
 /// its CSV line). The GIL is released during the run.
 #[pyfunction]
-#[pyo3(signature = (input, strategy, scan_time=1.0, move_time=0.0, speed=1.0, range=None, bounds_seconds=None))]
+#[pyo3(signature = (input, strategy, scan_time=1.0, move_time=0.0, speed=1.0, range=None, bounds_seconds=None, bounds_steps=None))]
 #[allow(clippy::too_many_arguments)] // Python's keywords
 pub(crate) fn sweep_run(
     py: Python<'_>,
@@ -100,9 +114,10 @@ pub(crate) fn sweep_run(
     speed: f64,
     range: Option<f64>,
     bounds_seconds: Option<f64>,
+    bounds_steps: Option<u64>,
 ) -> PyResult<(String, String)> {
     // Checked as a sweep of every strategy: `range_limited` in a sweep runs without a range.
-    let o = options("all", scan_time, move_time, speed, range, None, bounds_seconds)?;
+    let o = options("all", scan_time, move_time, speed, range, None, bounds_seconds, bounds_steps)?;
     sweep::sweep_strategies(&o).map_err(value_error)?;
     sweep::strategies(strategy).map_err(value_error)?;
     let input: SweepInput = serde_json::from_str(input)

@@ -318,6 +318,12 @@ def test_a_sweep_equals_the_cli_csv_byte_for_byte(tmp_path):
             assert row["scan_time_total"] == pytest.approx(2 * row["scans"])
     table.write_csv(tmp_path / "py.csv")
     assert (tmp_path / "py.csv").read_text() == out.read_text()
+    # With a budget of steps for the lower bounds, as --bounds-steps.
+    run_cli("--out", str(out), "explore", "--env", str(folder), "--strategy", "greedy_nbv",
+            "--bounds-steps", "3")
+    with pytest.warns(UserWarning):
+        cut = stopscan.sweep(folder, "greedy_nbv", bounds_steps=3, backend="serial")
+    assert cut.csv() == out.read_text()
     with pytest.raises(ValueError, match="warp"):
         stopscan.sweep(folder, "warp", backend="serial")
     with pytest.raises(ValueError, match="backend"):
@@ -331,13 +337,15 @@ def test_a_ray_sweep_of_200_runs_equals_the_serial_one(tmp_path):
         ray = pytest.importorskip("ray", reason="Ray is not installed (pip install ray)")
     folder = sweep_folder(tmp_path / "envs", 40)
     strategies = ["depth_first", "nearest_frontier", "greedy_nbv", "explore_lite", "cost_aware"]
+    # A budget of steps for the lower bounds: a deadline would cut them where the load puts
+    # it, and two runs per core compete on Ray.
     with pytest.warns(UserWarning, match="broken.wkt"):
-        serial = stopscan.sweep(folder, strategies, backend="serial")
+        serial = stopscan.sweep(folder, strategies, backend="serial", bounds_steps=5000)
     ray.init(num_cpus=2, include_dashboard=False)
     try:
         seen = []
         with pytest.warns(UserWarning, match="broken.wkt"):
-            on_ray = stopscan.sweep(folder, strategies, backend="ray",
+            on_ray = stopscan.sweep(folder, strategies, backend="ray", bounds_steps=5000,
                                     progress=lambda done, total: seen.append((done, total)))
     finally:
         ray.shutdown()

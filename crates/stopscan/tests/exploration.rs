@@ -212,9 +212,13 @@ fn check_range(inst: &Instance, name: &str, range: f64) -> PolygonRun {
     );
     // The certified lower bounds hold for the run: every scan sees at most a disc, and
     // witnesses the start does not see need scans and travel.
-    let lower =
-        stopscan::offline::polygon::lower_bounds(world.visibility(), inst.start, Some(range), None)
-            .unwrap();
+    let lower = stopscan::offline::polygon::lower_bounds(
+        world.visibility(),
+        inst.start,
+        Some(range),
+        &stopscan::offline::polygon::bounds::Budget::default(),
+    )
+    .unwrap();
     assert!(lower.area >= 1 && lower.views >= lower.area);
     assert!(
         run.tally.scans >= lower.views as u64,

@@ -61,7 +61,13 @@ fn instances() -> Vec<(&'static str, Instance)> {
 fn the_lower_bounds_hold_point_by_point() {
     for (name, inst) in instances() {
         let vis = Visibility::new(inst.domain.clone()).unwrap();
-        let lb = lower_bounds(&vis, inst.start, None, None).unwrap();
+        let lb = lower_bounds(
+            &vis,
+            inst.start,
+            None,
+            &stopscan::offline::polygon::bounds::Budget::default(),
+        )
+        .unwrap();
         assert!(lb.complete, "{name}");
         assert_eq!(lb.packing, lb.packing_points.len());
         assert!(lb.views > lb.packing, "{name}: {lb:?}");
@@ -102,7 +108,13 @@ fn no_run_and_no_optimum_beats_the_lower_bounds() {
             }
         }
         for &s in &starts {
-            let lb = lower_bounds(world.visibility(), s, None, None).unwrap();
+            let lb = lower_bounds(
+                world.visibility(),
+                s,
+                None,
+                &stopscan::offline::polygon::bounds::Budget::default(),
+            )
+            .unwrap();
             for strategy in REGISTRY.names().filter(|&n| n != "range_limited") {
                 let mut st = by_name(strategy, &cost).unwrap();
                 let r = run(&world, s, &cost, st.as_mut(), &mut NoObserver).unwrap();
@@ -263,4 +275,33 @@ fn every_built_solver_proves_the_same_optimum() {
             }
         }
     }
+}
+
+/// A budget of steps cuts the lower bounds at the same place every time, whatever the load
+/// (another thread computes the same bounds meanwhile): a cut run is marked incomplete and
+/// stays below the whole computation, and a budget that covers the whole computation gives
+/// exactly the unlimited bounds.
+#[test]
+fn a_budget_of_steps_cuts_the_bounds_at_the_same_place_every_time() {
+    use stopscan::offline::polygon::bounds::Budget;
+    let inst = stopscan::generate::pillar_forest(30.0, 20.0, 12, 8).unwrap();
+    let vis = Visibility::new(inst.domain.clone()).unwrap();
+    let whole = Budget::default();
+    let full = lower_bounds(&vis, inst.start, None, &whole).unwrap();
+    assert!(full.complete);
+    let needed = whole.spent();
+    for steps in [1, needed / 2, needed - 1] {
+        let (a, b) = std::thread::scope(|s| {
+            let busy = s.spawn(|| lower_bounds(&vis, inst.start, None, &Budget::default()));
+            let a = lower_bounds(&vis, inst.start, None, &Budget::steps(steps)).unwrap();
+            let b = lower_bounds(&vis, inst.start, None, &Budget::steps(steps)).unwrap();
+            busy.join().unwrap().unwrap();
+            (a, b)
+        });
+        assert_eq!(format!("{a:?}"), format!("{b:?}"), "{steps} steps");
+        assert!(!a.complete, "{steps} of {needed} steps");
+        assert!(a.views <= full.views && a.travel <= full.travel + 1e-9, "{steps} steps");
+    }
+    let enough = lower_bounds(&vis, inst.start, None, &Budget::steps(needed)).unwrap();
+    assert_eq!(format!("{enough:?}"), format!("{full:?}"));
 }

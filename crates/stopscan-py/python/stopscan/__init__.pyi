@@ -200,6 +200,7 @@ def sweep(
     range: Optional[float] = None,
     simplify: Optional[float] = None,
     bounds_seconds: Optional[float] = None,
+    bounds_steps: Optional[int] = None,
     backend: Literal["auto", "serial", "ray"] = "auto",
     address: Optional[str] = None,
     workers: Optional[int] = None,

@@ -116,6 +116,7 @@ def sweep(
     range: Optional[float] = None,
     simplify: Optional[float] = None,
     bounds_seconds: Optional[float] = None,
+    bounds_steps: Optional[int] = None,
     backend: str = "auto",
     address: Optional[str] = None,
     workers: Optional[int] = None,
@@ -132,9 +133,11 @@ def sweep(
     to the tasks, so the workers need no shared file system.
 
     The table's rows and CSV are the command line's for the same folder and options, byte for
-    byte, as long as the lower bounds finish within ``bounds_seconds`` (the CLI's
-    ``--bounds-seconds``) in both. ``progress`` shows ``done/total`` on standard error, or is
-    called with them.
+    byte, whatever ran the tasks, when the lower bounds have a budget of steps
+    (``bounds_steps``, the CLI's ``--bounds-steps``: the same cut on every machine), or when
+    they finish within ``bounds_seconds`` (``--bounds-seconds``, 5 s) in both: a deadline
+    cuts them where the machine's load puts it. ``progress`` shows ``done/total`` on
+    standard error, or is called with them.
     """
     if backend == "auto":
         try:
@@ -151,13 +154,13 @@ def sweep(
     strategies: List[str] = []
     for name in names:
         found, warning = _stopscan.sweep_check(
-            name, scan_time, move_time, speed, range, simplify, bounds_seconds)
+            name, scan_time, move_time, speed, range, simplify, bounds_seconds, bounds_steps)
         strategies.extend(s for s in found if s not in strategies)
         if warning:
             warnings.warn(warning, stacklevel=2)
     files = _files(envs)
     options = dict(scan_time=scan_time, move_time=move_time, speed=speed, range=range,
-                   bounds_seconds=bounds_seconds)
+                   bounds_seconds=bounds_seconds, bounds_steps=bounds_steps)
     loaded = []
     for f in files:
         name, input_json, error = _stopscan.sweep_load(f, simplify)

@@ -158,8 +158,7 @@ fn views_benchmarks(data: &std::path::Path) -> Result<Reproduction, ExperimentEr
         optimum_max_vertices: 200,
         ..crate::offline::polygon::ReferenceLimits::default()
     };
-    let sweep_rows =
-        sweep(&inputs, &names, &CostModel::default(), None, limits.bounds_seconds, &|| {});
+    let sweep_rows = sweep(&inputs, &names, &CostModel::default(), None, limits.bounds(), &|| {});
     let refs: Vec<Result<References, crate::offline::polygon::OfflineError>> = inputs
         .par_iter()
         .map(|input| {
@@ -396,12 +395,12 @@ pub fn sweep(
     strategies: &[&str],
     cost: &CostModel,
     range: Option<f64>,
-    bounds_seconds: f64,
+    bounds: (f64, Option<u64>),
     tick: &(dyn Fn() + Sync),
 ) -> Vec<SweepRow> {
     use rayon::prelude::*;
     let lower: Vec<Option<crate::offline::polygon::LowerBounds>> =
-        inputs.par_iter().map(|input| sweep_lower_bounds(input, range, bounds_seconds)).collect();
+        inputs.par_iter().map(|input| sweep_lower_bounds(input, range, bounds)).collect();
     let jobs: Vec<(usize, usize)> =
         (0..inputs.len()).flat_map(|i| (0..strategies.len()).map(move |s| (i, s))).collect();
     jobs.par_iter()
@@ -416,28 +415,29 @@ pub fn sweep(
 }
 
 /// One run of a sweep on its own (a task of a sweep spread over machines): `strategy` on
-/// `input`, its lower bounds computed here. The row is [`sweep`]'s for the same run, as long
-/// as the bounds finish within `bounds_seconds` in both.
+/// `input`, its lower bounds computed here. The row is [`sweep`]'s for the same run when the
+/// bounds have a budget of steps, or finish within their seconds in both.
 pub fn sweep_single(
     input: &SweepInput,
     strategy: &str,
     cost: &CostModel,
     range: Option<f64>,
-    bounds_seconds: f64,
+    bounds: (f64, Option<u64>),
 ) -> SweepRow {
-    let lower = sweep_lower_bounds(input, range, bounds_seconds);
+    let lower = sweep_lower_bounds(input, range, bounds);
     sweep_one(&input.name, &input.domain, input.start, strategy, cost, range, lower.as_ref())
 }
 
-/// An input's lower bounds, within `bounds_seconds` (`None` if they cannot be computed).
+/// An input's lower bounds, within `bounds`: seconds, or steps when given (`None` if they
+/// cannot be computed).
 fn sweep_lower_bounds(
     input: &SweepInput,
     range: Option<f64>,
-    bounds_seconds: f64,
+    bounds: (f64, Option<u64>),
 ) -> Option<crate::offline::polygon::LowerBounds> {
     let vis = crate::algorithm::visibility::Visibility::new(input.domain.clone()).ok()?;
-    let deadline = crate::offline::polygon::deadline_in(bounds_seconds);
-    crate::offline::polygon::lower_bounds(&vis, input.start, range, deadline).ok()
+    let budget = crate::offline::polygon::bounds::Budget::of(bounds.0, bounds.1);
+    crate::offline::polygon::lower_bounds(&vis, input.start, range, &budget).ok()
 }
 
 fn sweep_one(

@@ -161,8 +161,9 @@ pub fn load_input(file: &Path, simplify: Option<f64>) -> Result<SweepInput, Stri
 }
 
 /// One run of a sweep, on its own: the row [`sweep_dir`] gives `strategy` on `input` with
-/// `options` (checked by [`sweep_strategies`]), as long as the lower bounds finish within
-/// `options.limits.bounds_seconds` in both. A sweep spread over machines runs these.
+/// `options` (checked by [`sweep_strategies`]) when the lower bounds have a budget of steps
+/// (`options.limits.bounds_steps`), or finish within `options.limits.bounds_seconds` in
+/// both. A sweep spread over machines runs these.
 #[must_use]
 pub fn sweep_run(input: &SweepInput, strategy: &str, options: &ExploreOptions) -> SweepRow {
     crate::experiment::polygon::sweep_single(
@@ -170,7 +171,7 @@ pub fn sweep_run(input: &SweepInput, strategy: &str, options: &ExploreOptions) -
         strategy,
         &options.cost,
         options.range,
-        options.limits.bounds_seconds,
+        options.limits.bounds(),
     )
 }
 
@@ -241,7 +242,7 @@ pub fn sweep_dir(
         &strategies,
         &options.cost,
         options.range,
-        options.limits.bounds_seconds,
+        options.limits.bounds(),
         &|| on(SweepEvent::RunDone),
     );
     // Rows in file order; a file that did not load has one row per strategy with its error.

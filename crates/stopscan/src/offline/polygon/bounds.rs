@@ -122,7 +122,7 @@ struct Setup {
 }
 
 /// The lower bounds for exploring `vis`'s domain from `start` with an optional range limit,
-/// stopping each stage at `deadline` (the bounds stay valid, only weaker).
+/// stopping each stage when `budget` runs out (the bounds stay valid, only weaker).
 ///
 /// # Errors
 /// [`VisibilityError`] if the start is outside the free space.
@@ -130,9 +130,9 @@ pub fn lower_bounds(
     vis: &Visibility,
     start: Point,
     range: Option<f64>,
-    deadline: Option<Instant>,
+    budget: &Budget,
 ) -> Result<LowerBounds, VisibilityError> {
-    lower_bounds_within(vis, start, range, deadline, None)
+    lower_bounds_within(vis, start, range, budget, None)
 }
 
 /// [`lower_bounds`] for any exploration that sees at least `within` (a part of the free
@@ -146,7 +146,7 @@ pub fn lower_bounds_within(
     vis: &Visibility,
     start: Point,
     range: Option<f64>,
-    deadline: Option<Instant>,
+    budget: &Budget,
     within: Option<&Region>,
 ) -> Result<LowerBounds, VisibilityError> {
     let d = vis.domain();
@@ -158,13 +158,13 @@ pub fn lower_bounds_within(
         _ => 1,
     };
     vis.query(start)?;
-    let setup = witnesses(vis, start, range, deadline, within)?;
-    let packing = packing(&setup, deadline);
+    let setup = witnesses(vis, start, range, budget, within)?;
+    let packing = packing(&setup, budget);
     // Travel before the fractional packing: it is cheap and the time bound needs it; the
     // packing LP then has what is left of the budget.
-    let (travel, travel_witness, travel_done) = travel(vis, start, &setup, deadline);
+    let (travel, travel_witness, travel_done) = travel(vis, start, &setup, budget);
     let beat = packing.len().max(area.saturating_sub(1));
-    let fractional = fractional_packing(&setup, &packing, beat, deadline);
+    let fractional = fractional_packing(&setup, &packing, beat, budget);
     let lp = fractional.as_ref().map(|f| f.iter().map(|w| w.weight).sum::<f64>());
     let mut views = area;
     let mut views_rule = match range {
@@ -194,12 +194,57 @@ pub fn lower_bounds_within(
         travel,
         travel_witness,
         witnesses: setup.examined,
-        complete: setup.complete && travel_done && deadline.is_none_or(|t| Instant::now() < t),
+        complete: setup.complete && travel_done && !budget.exhausted(),
     })
 }
 
-fn expired(deadline: Option<Instant>) -> bool {
-    deadline.is_some_and(|t| Instant::now() >= t)
+/// How long the lower bounds may work. A deadline cuts them where the machine's speed and
+/// load put it; a number of steps cuts them at the same place on every machine (a step is
+/// one check of the budget, made every few dozen witnesses, pairs or cells; the packing LP,
+/// which has no step count, runs to its end). Either way the bounds stay valid, only weaker.
+#[derive(Debug, Clone, Default)]
+pub struct Budget {
+    deadline: Option<Instant>,
+    steps: Option<u64>,
+    spent: std::cell::Cell<u64>,
+}
+
+impl Budget {
+    /// Until `deadline` (none: no time limit).
+    #[must_use]
+    pub fn until(deadline: Option<Instant>) -> Self {
+        Self { deadline, ..Self::default() }
+    }
+
+    /// `steps` steps, whatever the time.
+    #[must_use]
+    pub fn steps(steps: u64) -> Self {
+        Self { steps: Some(steps), ..Self::default() }
+    }
+
+    /// [`Budget::steps`] when `steps` is given, else `seconds` from now.
+    #[must_use]
+    pub fn of(seconds: f64, steps: Option<u64>) -> Self {
+        steps.map_or_else(|| Self::until(super::deadline_in(seconds)), Self::steps)
+    }
+
+    /// The steps taken so far.
+    #[must_use]
+    pub fn spent(&self) -> u64 {
+        self.spent.get()
+    }
+
+    /// Takes one step; whether the budget has run out.
+    fn expired(&self) -> bool {
+        self.spent.set(self.spent.get() + 1);
+        self.exhausted()
+    }
+
+    /// Whether the budget has run out (without taking a step).
+    fn exhausted(&self) -> bool {
+        self.steps.is_some_and(|n| self.spent.get() > n)
+            || self.deadline.is_some_and(|t| Instant::now() >= t)
+    }
 }
 
 /// Candidate witness points: triangle centroids and points just inside convex corners.
@@ -249,7 +294,7 @@ fn witnesses(
     vis: &Visibility,
     start: Point,
     range: Option<f64>,
-    deadline: Option<Instant>,
+    budget: &Budget,
     within: Option<&Region>,
 ) -> Result<Setup, VisibilityError> {
     let d = vis.domain();
@@ -265,7 +310,7 @@ fn witnesses(
     let mut complete = true;
     let mut examined = 0;
     for (k, &w) in points.iter().enumerate() {
-        if k % 64 == 0 && expired(deadline) {
+        if k % 64 == 0 && budget.expired() {
             complete = false;
             break;
         }
@@ -368,10 +413,10 @@ fn apart(a: &Witness, b: &Witness, tol: f64) -> bool {
 
 /// Witnesses (indices into the setup) with pairwise disjoint regions: greedy, smallest
 /// regions first.
-fn packing(setup: &Setup, deadline: Option<Instant>) -> Vec<usize> {
+fn packing(setup: &Setup, budget: &Budget) -> Vec<usize> {
     let mut chosen: Vec<usize> = Vec::new();
     for (k, w) in setup.witnesses.iter().enumerate() {
-        if k % 16 == 0 && expired(deadline) {
+        if k % 16 == 0 && budget.expired() {
             break;
         }
         if chosen.iter().all(|&c| apart(&setup.witnesses[c], w, setup.tol)) {
@@ -406,9 +451,9 @@ fn fractional_packing(
     setup: &Setup,
     packing: &[usize],
     beat: usize,
-    deadline: Option<Instant>,
+    budget: &Budget,
 ) -> Option<Vec<WeightedWitness>> {
-    if setup.witnesses.is_empty() || expired(deadline) {
+    if setup.witnesses.is_empty() || budget.expired() {
         return None;
     }
     let mut ids: Vec<usize> = (0..setup.witnesses.len().min(LP_WITNESSES)).collect();
@@ -434,10 +479,10 @@ fn fractional_packing(
     }
     let mut best: Option<(f64, Vec<WeightedWitness>)> = None;
     for _round in 0..LP_ROUNDS {
-        if expired(deadline) {
+        if budget.expired() {
             break;
         }
-        let y = solve_packing_lp(ws.len(), &rows, deadline)?;
+        let y = solve_packing_lp(ws.len(), &rows, budget)?;
         let support: Vec<usize> = (0..ws.len()).filter(|&i| y[i] > LP_TOLERANCE).collect();
         let total: f64 = support.iter().map(|&i| y[i]).sum();
         let ceiling = |v: f64| (v - LP_TOLERANCE).ceil().max(0.0) as usize;
@@ -445,7 +490,7 @@ fn fractional_packing(
         if ceiling(total) <= beat.max(found) {
             break;
         }
-        let (depth, worst) = arrangement_depths(&ws, &support, &y, tol, deadline)?;
+        let (depth, worst) = arrangement_depths(&ws, &support, &y, tol, budget)?;
         let scale = depth.max(1.0);
         let value = total / scale;
         if best.as_ref().is_none_or(|b| value > b.0) {
@@ -470,14 +515,14 @@ fn fractional_packing(
 }
 
 /// Maximise `Σ y` subject to `Σ_{i ∈ row} y_i ≤ 1` for every row, `0 ≤ y ≤ 1`.
-fn solve_packing_lp(n: usize, rows: &[Vec<usize>], deadline: Option<Instant>) -> Option<Vec<f64>> {
+fn solve_packing_lp(n: usize, rows: &[Vec<usize>], budget: &Budget) -> Option<Vec<f64>> {
     use microlp::{ComparisonOp, OptimizationDirection, Problem};
     let mut p = Problem::new(OptimizationDirection::Maximize);
     let y: Vec<_> = (0..n).map(|_| p.add_var(1.0, (0.0, 1.0))).collect();
     for r in rows {
         p.add_constraint(r.iter().map(|&i| (y[i], 1.0)).collect::<Vec<_>>(), ComparisonOp::Le, 1.0);
     }
-    if let Some(t) = deadline {
+    if let Some(t) = budget.deadline {
         p.set_time_limit(t.saturating_duration_since(Instant::now()));
     }
     let sol = p.solve().ok()?.into_solution().ok()?;
@@ -492,7 +537,7 @@ fn arrangement_depths(
     support: &[usize],
     y: &[f64],
     tol: f64,
-    deadline: Option<Instant>,
+    budget: &Budget,
 ) -> Option<(f64, Vec<Point>)> {
     let mut vertices: Vec<Point> =
         support.iter().flat_map(|&i| ws[i].poly.iter().copied()).collect();
@@ -523,7 +568,7 @@ fn arrangement_depths(
         }
     }
     for (c, list) in grid.iter().enumerate() {
-        if c % 256 == 0 && expired(deadline) {
+        if c % 256 == 0 && budget.expired() {
             return None;
         }
         for (x, &i) in list.iter().enumerate() {
@@ -557,7 +602,7 @@ fn arrangement_depths(
     let mut deep: Vec<(f64, Point)> = Vec::new();
     let mut max = 0.0_f64;
     for (k, &(bound, g)) in order.iter().enumerate() {
-        if k % 1024 == 0 && expired(deadline) {
+        if k % 1024 == 0 && budget.expired() {
             return None;
         }
         if bound <= max && bound <= 1.0 + LP_TOLERANCE {
@@ -580,7 +625,7 @@ fn travel(
     vis: &Visibility,
     start: Point,
     setup: &Setup,
-    deadline: Option<Instant>,
+    budget: &Budget,
 ) -> (f64, Option<Point>, bool) {
     if setup.witnesses.is_empty() {
         return (0.0, None, true);
@@ -590,7 +635,7 @@ fn travel(
     hubs.sort_by(|a, b| a.1.total_cmp(&b.1));
     let mut best = (0.0_f64, None);
     for (k, w) in setup.witnesses.iter().enumerate() {
-        if k % 32 == 0 && expired(deadline) {
+        if k % 32 == 0 && budget.expired() {
             return (best.0, best.1, false);
         }
         let mut d = f64::INFINITY;

@@ -138,6 +138,10 @@ pub struct ReferenceLimits {
     pub optimum_nodes: Option<u64>,
     /// Seconds for the lower bounds.
     pub bounds_seconds: f64,
+    /// Steps for the lower bounds, when set: a budget that does not depend on the machine
+    /// or its load ([`bounds::Budget::steps`]), used instead of `bounds_seconds`.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub bounds_steps: Option<u64>,
     /// The integer-programming solver.
     pub solver: Solver,
 }
@@ -150,12 +154,19 @@ impl Default for ReferenceLimits {
             optimum_seconds: 5.0,
             optimum_nodes: None,
             bounds_seconds: 5.0,
+            bounds_steps: None,
             solver: Solver::default(),
         }
     }
 }
 
 impl ReferenceLimits {
+    /// The lower bounds' budget: (seconds, steps), steps used when given.
+    #[must_use]
+    pub fn bounds(&self) -> (f64, Option<u64>) {
+        (self.bounds_seconds, self.bounds_steps)
+    }
+
     /// Only the lower bounds (within their default budget): no greedy reference, no optimum.
     pub const BOUNDS_ONLY: Self = Self {
         greedy_max_vertices: 0,
@@ -163,6 +174,7 @@ impl ReferenceLimits {
         optimum_seconds: 0.0,
         optimum_nodes: None,
         bounds_seconds: 5.0,
+        bounds_steps: None,
         solver: Solver::Microlp,
     };
 }
@@ -209,8 +221,8 @@ pub fn references_within(
 ) -> Result<References, OfflineError> {
     let d = vis.domain();
     progress("lower bounds");
-    let lower =
-        bounds::lower_bounds_within(vis, start, range, deadline_in(limits.bounds_seconds), within)?;
+    let budget = bounds::Budget::of(limits.bounds_seconds, limits.bounds_steps);
+    let lower = bounds::lower_bounds_within(vis, start, range, &budget, within)?;
     let n = d.vertex_count();
     let views = lower.views;
     let skipped = |why: String| OptimumReport::skipped(limits.solver, views, why);
@@ -424,7 +436,7 @@ pub fn optimum(
     seconds: f64,
     solver: Solver,
 ) -> Result<OptimumReport, OfflineError> {
-    let lower = lower_bounds(vis, start, None, deadline_in(seconds))?;
+    let lower = lower_bounds(vis, start, None, &bounds::Budget::until(deadline_in(seconds)))?;
     let mut p = Problem::new(vis, start)?;
     let g = greedy_on(&mut p)?;
     let mut report = optimum::solve(
