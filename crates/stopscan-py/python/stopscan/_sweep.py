@@ -72,8 +72,15 @@ def _files(envs: Union[PathLike, Sequence[PathLike]]) -> List[str]:
         path = os.fspath(envs)
         if os.path.isdir(path):
             return [os.fspath(p) for p in _stopscan.sweep_files(path)]
-        return [path]
-    return [os.fspath(p) for p in envs]
+        files = [path]
+    else:
+        files = [os.fspath(p) for p in envs]
+    missing = [f for f in files if not os.path.exists(f)]
+    if missing:
+        raise ValueError(f"{missing[0]}: no such file or folder")
+    if not files:
+        raise ValueError("no environment files to sweep")
+    return files
 
 
 def _run(input_json: str, strategy: str, options: Dict[str, Any]) -> Tuple[str, str]:
