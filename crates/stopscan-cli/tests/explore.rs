@@ -268,7 +268,13 @@ fn explore_simplifies_ros_maps_as_map_import_does() {
 #[test]
 fn explore_with_a_footprint_and_a_window_rule() {
     let map = common::fixture("ros-maps/turtlebot3_world.yaml");
+    // The records go to a temporary folder, not to run.json in the crate's directory.
+    let dir = temp("footprint-rule");
+    std::fs::create_dir_all(&dir).unwrap();
+    let out = dir.join("run.json");
     let r = json(&[
+        "--out",
+        out.to_str().unwrap(),
         "explore",
         "--env",
         &map,
@@ -310,7 +316,13 @@ fn explore_with_a_footprint_and_a_window_rule() {
     assert!(r["sensor"]["windows_into_small_pockets"].is_u64(), "{r}");
     assert!(r["sensor"]["window_rule"].as_str().unwrap().contains("(pocket_cap)"));
     // Without a footprint on a polygon, nothing is added to the record.
-    let plain = json(&["explore", "--env", &common::fixture("office.geojson")]);
+    let plain = json(&[
+        "--out",
+        out.to_str().unwrap(),
+        "explore",
+        "--env",
+        &common::fixture("office.geojson"),
+    ]);
     assert!(plain.get("robot").is_none());
     assert!(plain["sensor"].get("window_rule").is_none());
     assert!(plain["sensor"].get("min_pocket").is_none());
