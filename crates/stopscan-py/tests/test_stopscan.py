@@ -329,7 +329,8 @@ def test_a_sweep_equals_the_cli_csv_byte_for_byte(tmp_path):
     with pytest.raises(ValueError, match="backend"):
         stopscan.sweep(folder, "depth_first", backend="dask")
     with pytest.raises(ValueError, match="nope.geojson: no such file or folder"):
-        stopscan.sweep([folder / "spiral02.geojson", folder / "nope.geojson"], backend="serial")
+        stopscan.sweep([folder / "spiral02.geojson", folder / "nope.geojson"], "depth_first",
+                       backend="serial")
 
 
 def test_a_ray_sweep_of_200_runs_equals_the_serial_one(tmp_path):
