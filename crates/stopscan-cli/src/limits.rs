@@ -10,7 +10,7 @@ use anyhow::bail;
 use crate::cli::Global;
 
 pub(crate) use stopscan::pipeline::limits::{
-    CELLS, DISTANCES, FLOORS, FRAMES, PILLARS, ROBOTS, SAMPLES, SIZE, SPIKES, STOPS,
+    CELLS, DISTANCES, FLOORS, FRAMES, PILLARS, ROBOTS, SAMPLES, SIZE, SPIKES, STOPS, camera_frames,
 };
 
 /// `x` with four significant digits, rounded up (`1.571e-7`): a smallest allowed value.

@@ -76,7 +76,7 @@ fn parse_box(s: &str, g: &Global) -> anyhow::Result<(Cell, Cell)> {
             "--search-box must be ROW0,COL0,ROW1,COL1 with ROW0 ≤ ROW1 and COL0 ≤ COL1, got {s:?}"
         );
     }
-    let cells = (f64::from(r1) - f64::from(r0) + 1.0) * (f64::from(c1) - f64::from(c0) + 1.0);
+    let cells = Search { launch: [r0, c0], min: [r0, c0], max: [r1, c1] }.cells();
     limits::soft(
         g,
         cells,
@@ -136,14 +136,7 @@ fn fresh(a: &RoiArgs, g: &Global) -> anyhow::Result<MissionRun> {
     let cost = CostModel::new(a.scan_time, a.move_time, a.robot_speed)?;
     let roi = source.load()?;
     if a.camera {
-        // Every region cell is scanned about once, and a third of the search box's cells.
-        let scans = roi.len() as f64
-            + search.map_or(0.0, |s| {
-                (f64::from(s.max[0]) - f64::from(s.min[0]) + 1.0)
-                    * (f64::from(s.max[1]) - f64::from(s.min[1]) + 1.0)
-                    / 3.0
-            });
-        let frames = scans * a.frames as f64;
+        let frames = limits::camera_frames(roi.len(), search.as_ref(), a.frames);
         limits::soft(
             g,
             frames,

@@ -105,7 +105,6 @@ pub(crate) fn roi_json(
     if !roi_heading_deg.is_finite() {
         return Err(value_error(format!("roi_heading_deg must be finite, got {roi_heading_deg}")));
     }
-    let mut search_cells = 0.0;
     let search = match (search_box, launch) {
         (Some((r0, c0, r1, c1)), Some((lr, lc))) => {
             if !(r0 <= r1 && c0 <= c1) {
@@ -113,11 +112,10 @@ pub(crate) fn roi_json(
                     "search_box must be (row0, col0, row1, col1) with row0 ≤ row1 and col0 ≤ col1",
                 ));
             }
-            let cells =
-                (f64::from(r1) - f64::from(r0) + 1.0) * (f64::from(c1) - f64::from(c0) + 1.0);
+            let search = Search { launch: [lr, lc], min: [r0, c0], max: [r1, c1] };
+            let cells = search.cells();
             soft_limit(allow_large, cells, limits::CELLS, &format!("search_box of {cells} cells"))?;
-            search_cells = cells;
-            Some(Search { launch: [lr, lc], min: [r0, c0], max: [r1, c1] })
+            Some(search)
         }
         (None, None) => None,
         _ => return Err(value_error("a lawn-mowing search needs both search_box and launch")),
@@ -145,15 +143,14 @@ pub(crate) fn roi_json(
         mcap: None,
         trace: None,
     };
-    let camera = camera.then_some(Camera { frames, search_cells, allow_large });
+    let camera = camera.then_some(Camera { frames, allow_large });
     py.detach(move || fly(spec, camera, [svg, report, mcap])).map_err(value_error)
 }
 
-/// What the camera's soft limit needs: frames per scan, the search box's cells.
+/// What the camera's soft limit needs: frames per scan, and whether to lift it.
 #[derive(Clone, Copy)]
 struct Camera {
     frames: usize,
-    search_cells: f64,
     allow_large: bool,
 }
 
@@ -165,10 +162,8 @@ fn fly(
     outputs: [Option<PathBuf>; 3],
 ) -> Result<String, String> {
     let roi = spec.source.load().map_err(|e| e.to_string())?;
-    if let Some(Camera { frames, search_cells, allow_large }) = camera {
-        // Every region cell is scanned about once, and a third of the search box's cells
-        // (the CLI's estimate).
-        let total = ((roi.len() as f64 + search_cells / 3.0) * frames as f64).round();
+    if let Some(Camera { frames, allow_large }) = camera {
+        let total = limits::camera_frames(roi.len(), spec.search.as_ref(), frames).round();
         if !allow_large && total > limits::FRAMES as f64 {
             return Err(format!(
                 "a camera with {frames} frames per scan on {} region cells renders about {total} frames: the limit is {} (about 0.6 ms per frame); pass allow_large=True to go beyond it",

@@ -27,3 +27,14 @@ pub const SIZE: u64 = 10_000;
 pub const SPIKES: u64 = 1_000;
 /// `generate forest --size` (pillars in a 30 m × 20 m rectangle: a few hundred fit).
 pub const PILLARS: u64 = 1_000;
+
+/// The camera frames a mission renders, estimated for [`FRAMES`]: every region cell is scanned
+/// about once, and a third of the search box's cells, each with `frames` frames.
+#[must_use]
+pub fn camera_frames(
+    region_cells: usize,
+    search: Option<&crate::sim::grid::Search>,
+    frames: usize,
+) -> f64 {
+    (region_cells as f64 + search.map_or(0.0, |s| s.cells() / 3.0)) * frames as f64
+}

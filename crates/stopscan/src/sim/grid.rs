@@ -124,6 +124,15 @@ pub struct Search {
     pub max: Cell,
 }
 
+impl Search {
+    /// The box's cells (as a float: a box may span more than `usize` on 32 bits).
+    #[must_use]
+    pub fn cells(&self) -> f64 {
+        (f64::from(self.max[0]) - f64::from(self.min[0]) + 1.0)
+            * (f64::from(self.max[1]) - f64::from(self.min[1]) + 1.0)
+    }
+}
+
 /// Why a mission cannot start.
 #[derive(Debug, Clone, PartialEq, thiserror::Error)]
 #[non_exhaustive]
