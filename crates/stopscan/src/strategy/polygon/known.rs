@@ -805,15 +805,17 @@ impl Known {
         if len == 0.0 {
             return None;
         }
-        let beside: Vec<Point> = self
-            .beside_points(from, to, gap, c)
-            .into_iter()
-            .filter(|&(z, foot)| self.inside(view, z) && self.sees_point_within(view, z, foot))
-            .map(|(z, _)| z)
-            .collect();
-        if let Some(&z) = beside.iter().find(|&&z| v.reaches(z) && v.clear(z, c, self.relaxed())) {
+        let beside = self.beside_points(from, to, gap, c);
+        let sees_foot = |&(z, foot): &(Point, Point)| {
+            self.inside(view, z) && self.sees_point_within(view, z, foot)
+        };
+        if let Some(&(z, _)) = beside
+            .iter()
+            .find(|b| v.reaches(b.0) && v.clear(b.0, c, self.relaxed()) && sees_foot(b))
+        {
             return Some((z, Vec::new()));
         }
+        let beside: Vec<Point> = beside.iter().filter(|b| sees_foot(b)).map(|b| b.0).collect();
         let a = Approach::new(&v.polygon, c);
         let g = part_points(from, to, gap);
         self.pass_or_look(&a, v.at, g, &beside, |z, m| self.sees_point_within(view, z, m))
@@ -851,7 +853,8 @@ impl Known {
             .iter()
             .filter(|&&z| !self.stood_at(z))
             .filter_map(|&z| {
-                LOOK_SAMPLES
+                // The samples by the steepness of their sight lines; the first seen ranks z.
+                let mut aims: Vec<(f64, Point)> = LOOK_SAMPLES
                     .iter()
                     .map(|&f| [g[0][0] + f * dx, g[0][1] + f * dy])
                     .filter_map(|m| {
@@ -859,10 +862,11 @@ impl Known {
                         let sl = sx.hypot(sy);
                         let sin =
                             if sl > 0.0 { (dx * sy - dy * sx).abs() / (len * sl) } else { 0.0 };
-                        (sin >= min_sin && sees(z, m)).then_some(sin)
+                        (sin >= min_sin).then_some((sin, m))
                     })
-                    .reduce(f64::max)
-                    .map(|sin| (sin, z))
+                    .collect();
+                aims.sort_by(|x, y| y.0.total_cmp(&x.0));
+                aims.into_iter().find(|&(_, m)| sees(z, m)).map(|(sin, _)| (sin, z))
             })
             .collect();
         looks.sort_by(|x, y| y.0.total_cmp(&x.0));
