@@ -264,7 +264,7 @@ const SURPRISE: f64 = 4.0;
 /// Aligns `points` (returns in the scanner's frame) to `map`, starting from `guess` (the
 /// scanner's pose by odometry, in the map frame), weighed against odometry's `prior` when
 /// given. When the alignment from the guess falls back, does not converge, or corrects the
-/// guess by more than [`SURPRISE`] of the prior's standard deviations, it is tried again
+/// guess by more than four of the prior's standard deviations, it is tried again
 /// from the guess turned by ±0.1 rad and shifted by 1.5 standard deviations along each axis
 /// (the prior stays on the guess), and the best is kept: one that did not fall back and is
 /// within the prior, then odometry (a fallback), then a surprising one (when every start
