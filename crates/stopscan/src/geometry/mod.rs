@@ -39,6 +39,35 @@ pub fn segment_distance(p: Point, a: Point, b: Point) -> f64 {
     (p[0] - a[0] - t * dx).hypot(p[1] - a[1] - t * dy)
 }
 
+/// The squared distance from `p` to the closed segment `a b` (floating point).
+fn segment_distance_sq(p: Point, a: Point, b: Point) -> f64 {
+    let (dx, dy) = (b[0] - a[0], b[1] - a[1]);
+    let l2 = dx * dx + dy * dy;
+    let t = if l2 > 0.0 {
+        (((p[0] - a[0]) * dx + (p[1] - a[1]) * dy) / l2).clamp(0.0, 1.0)
+    } else {
+        0.0
+    };
+    let (ex, ey) = (p[0] - a[0] - t * dx, p[1] - a[1] - t * dy);
+    ex * ex + ey * ey
+}
+
+/// Whether the closed segments `a b` and `c d` come closer than `r`: they meet (exact test),
+/// or an end lies nearer than `r` to the other segment; never for `r <= 0`. It is
+/// `segments_distance(a, b, c, d) < r` up to rounding, without square roots (the planner's
+/// clearance test, called for every wall near every move it considers).
+pub fn segments_closer_than(a: Point, b: Point, c: Point, d: Point, r: f64) -> bool {
+    if r <= 0.0 || r.is_nan() {
+        return false;
+    }
+    let r2 = r * r;
+    segment_distance_sq(a, c, d) < r2
+        || segment_distance_sq(b, c, d) < r2
+        || segment_distance_sq(c, a, b) < r2
+        || segment_distance_sq(d, a, b) < r2
+        || crate::kernel::segments_intersect(a, b, c, d)
+}
+
 /// The distance between the closed segments `a b` and `c d`: 0 when they meet (exact test),
 /// else the least of the four end-to-segment distances (floating point).
 pub fn segments_distance(a: Point, b: Point, c: Point, d: Point) -> f64 {
@@ -54,4 +83,32 @@ pub fn segments_distance(a: Point, b: Point, c: Point, d: Point) -> f64 {
 /// Signed area of a ring (positive when counter-clockwise).
 pub fn signed_area_of(ring: &[Point]) -> f64 {
     domain::signed_area(ring)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use proptest::prelude::*;
+
+    fn point() -> impl Strategy<Value = Point> {
+        (-10.0..10.0f64, -10.0..10.0f64).prop_map(|(x, y)| [x, y])
+    }
+
+    proptest! {
+        /// The squared test agrees with the distance it stands for, away from rounding at
+        /// the threshold; crossing segments are closer than any positive r, and nothing is
+        /// closer than 0.
+        #[test]
+        fn segments_closer_than_agrees_with_their_distance(
+            a in point(), b in point(), c in point(), d in point(), r in 0.0..3.0f64,
+        ) {
+            let dist = segments_distance(a, b, c, d);
+            prop_assume!((dist - r).abs() > 1e-9);
+            prop_assert_eq!(segments_closer_than(a, b, c, d, r), dist < r);
+            prop_assert!(!segments_closer_than(a, b, c, d, 0.0));
+            if crate::kernel::segments_intersect(a, b, c, d) {
+                prop_assert!(segments_closer_than(a, b, c, d, 1e-12));
+            }
+        }
+    }
 }

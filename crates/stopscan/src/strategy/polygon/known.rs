@@ -7,7 +7,7 @@ use serde::{Deserialize, Serialize};
 use crate::algorithm::cover::{self, Intervals};
 use crate::algorithm::region::Region;
 use crate::algorithm::visibility::BoundaryPiece;
-use crate::geometry::segments_distance;
+use crate::geometry::{segments_closer_than, segments_distance};
 use crate::kernel::{
     Point, RingSide, magnitude, on_segment, orient_sign, ring_side, rounding, segments_intersect,
 };
@@ -267,7 +267,7 @@ pub(super) fn keeps_clear(polygon: &[Point], at: Point, z: Point, c: f64) -> boo
             || p[0].min(q[0]) > x1
             || p[1].max(q[1]) < y0
             || p[1].min(q[1]) > y1
-            || segments_distance(at, z, p, q) >= c
+            || !segments_closer_than(at, z, p, q, c)
     })
 }
 
