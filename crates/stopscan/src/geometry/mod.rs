@@ -27,8 +27,8 @@ pub fn ray_segment(o: Point, u: Point, a: Point, b: Point) -> Option<f64> {
     (t > 0.0 && (0.0..=1.0).contains(&v)).then_some(t)
 }
 
-/// The distance from `p` to the closed segment `a b` (floating point).
-pub fn segment_distance(p: Point, a: Point, b: Point) -> f64 {
+/// The offset from the point of the closed segment `a b` nearest `p` to `p`.
+fn offset_from_segment(p: Point, a: Point, b: Point) -> [f64; 2] {
     let (dx, dy) = (b[0] - a[0], b[1] - a[1]);
     let l2 = dx * dx + dy * dy;
     let t = if l2 > 0.0 {
@@ -36,19 +36,18 @@ pub fn segment_distance(p: Point, a: Point, b: Point) -> f64 {
     } else {
         0.0
     };
-    (p[0] - a[0] - t * dx).hypot(p[1] - a[1] - t * dy)
+    [p[0] - a[0] - t * dx, p[1] - a[1] - t * dy]
+}
+
+/// The distance from `p` to the closed segment `a b` (floating point).
+pub fn segment_distance(p: Point, a: Point, b: Point) -> f64 {
+    let [ex, ey] = offset_from_segment(p, a, b);
+    ex.hypot(ey)
 }
 
 /// The squared distance from `p` to the closed segment `a b` (floating point).
 fn segment_distance_sq(p: Point, a: Point, b: Point) -> f64 {
-    let (dx, dy) = (b[0] - a[0], b[1] - a[1]);
-    let l2 = dx * dx + dy * dy;
-    let t = if l2 > 0.0 {
-        (((p[0] - a[0]) * dx + (p[1] - a[1]) * dy) / l2).clamp(0.0, 1.0)
-    } else {
-        0.0
-    };
-    let (ex, ey) = (p[0] - a[0] - t * dx, p[1] - a[1] - t * dy);
+    let [ex, ey] = offset_from_segment(p, a, b);
     ex * ex + ey * ey
 }
 

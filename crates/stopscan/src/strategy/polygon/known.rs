@@ -782,8 +782,9 @@ impl Known {
     /// clearance `c` can reach from the view's viewpoint, with the waypoints on the way
     /// (empty for a straight move). In order of preference:
     /// - points of the part (its middle first, then quarters and eighths) stepped `c` and
-    ///   more off the window into the region, the first whose straight move keeps `c` from
-    ///   the region's boundary; from there the robot looks through the window from a step
+    ///   more off the window into the region, that see the point of the part they stand
+    ///   beside, the first whose straight move keeps `c` from the region's boundary; from
+    ///   there the robot looks through the window from a step
     ///   back, and what it cannot see is left behind the new view's own windows;
     /// - the same points, the first reached by a path that bends around the region's
     ///   corners ([`Approach`]): a door seen at a slant;
