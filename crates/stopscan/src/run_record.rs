@@ -139,6 +139,10 @@ pub struct RawScanInfo {
     pub icp_fallbacks: usize,
     /// Stops where the walls left a direction unconstrained (odometry kept along it).
     pub icp_degenerate: usize,
+    /// Scan matches to single earlier stops that became edges of the pose graph, over all
+    /// stops.
+    #[serde(default)]
+    pub graph_links: usize,
     /// Beams in all scans, and what cleaning did to them.
     pub cleaning: crate::sensing::ingest::Cleaning,
     /// Every stop, in order.
@@ -185,6 +189,7 @@ impl RawScanInfo {
                 .iter()
                 .filter(|s| s.alignment.is_some_and(|a| a.degenerate.is_some()))
                 .count(),
+            graph_links: stops.iter().map(|s| s.links).sum(),
             cleaning,
             stops: stops.clone(),
         }

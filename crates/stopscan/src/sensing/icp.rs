@@ -403,6 +403,18 @@ fn align_from(
     out
 }
 
+/// How sure an alignment of `points` to `map` at `pose` is: the information matrix (the
+/// normal equations' matrix, in `(x, y, θ)` of the map frame with θ about the scanner) of
+/// the pairs within the final gate. Near zero along a direction the walls leave free.
+pub fn information(
+    points: &[Point],
+    pose: &Pose,
+    map: &WallMap,
+    params: &IcpParams,
+) -> [[f64; 3]; 3] {
+    normal_equations(points, pose, map, params.gate_end, params, 1.0).0
+}
+
 /// The normal equations of the point-to-line residuals at `pose` (pairs within `gate`, Huber
 /// weights, in units of the range noise), with the rotation scaled by `lever`: the matrix,
 /// the right-hand side, the pairs and the sum of squared residuals.

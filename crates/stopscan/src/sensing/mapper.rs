@@ -5,13 +5,25 @@
 //! could not align (a [`Fallback`](super::icp::Fallback)) is placed by odometry and informs
 //! the strategy, but its walls stay out of the map: put in the wrong place, they would pull
 //! every later alignment.
+//!
+//! **Loop closure.** Every stop is a node of a [pose graph](super::posegraph). Odometry ties
+//! each stop to the one before (as sure as its drift over the metres driven), and each aligned
+//! scan is matched on its own to the nearest [`MAX_LINKS`] earlier stops whose reach overlaps
+//! its own. A match that converged on [`LINK_MIN_PAIRS`] pairs becomes an edge when the graph
+//! can meet it without straining what it already holds (a scan slid along one stop's walls
+//! would). The graph is solved after every scan, and when it moved an earlier stop, the map's
+//! walls are put again where their stops now are. So a stop placed wrongly along a corridor
+//! (odometry kept along it) is moved when a later stop sees both its walls and walls placed
+//! well, and the next scans align to walls in their right places. The pose reported for a
+//! stop is the graph's at the time it was read; [`Mapper::poses`] has them as they are now.
 
 use serde::{Deserialize, Serialize};
 
 use super::icp::{self, Alignment, IcpParams, Prior, WallMap};
 use super::ingest::{Cleaning, IngestError, IngestParams, ingest};
+use super::posegraph::{Edge, Information, PoseGraph};
 use crate::kernel::Point;
-use crate::protocol::laser::{LaserScan, Pose};
+use crate::protocol::laser::{LaserScan, Pose, wrap};
 use crate::protocol::polygon::PolygonObservation;
 
 /// The wall map keeps walls in pieces of at most this length, metres.
@@ -68,8 +80,58 @@ pub struct Reading {
     pub estimate: Pose,
     /// What ICP did (none for the first scan: nothing was known).
     pub alignment: Option<Alignment>,
+    /// How many earlier stops the scan was matched to on its own: the pose graph's edges
+    /// from it, besides odometry.
+    pub links: usize,
     /// What cleaning did.
     pub cleaning: Cleaning,
+}
+
+/// The most earlier stops a scan is matched to on its own, nearest first.
+pub const MAX_LINKS: usize = 6;
+
+/// The fewest pairs for a match to one earlier stop to become an edge of the pose graph.
+pub const LINK_MIN_PAIRS: usize = 100;
+
+/// How far a match to one earlier stop is expected to move the map's alignment, one standard
+/// deviation: a match that moves it by more than four of these is kept only when every
+/// restart agrees (a single stop's walls can let a scan slide along them).
+const LINK_PRIOR: Prior = Prior { position: 0.1, heading: 0.01 };
+
+/// A scan match's information is divided by this: its pairs' residuals are not independent
+/// (the same wall fit, the same beam pattern), so `n` pairs know less than `n` independent
+/// ones would.
+const LINK_INFLATION: f64 = 10.0;
+
+/// A match is kept when adding it to the graph raises the graph's weighted squared error by
+/// at most this much (about the 1-in-100,000 tail of a chi-squared with three degrees of
+/// freedom): a wrong match strains the measurements the graph already holds.
+const LINK_STRAIN: f64 = 25.0;
+
+/// At most this many Gauss-Newton steps per scan.
+const GRAPH_STEPS: usize = 10;
+
+/// The map is rebuilt from every stop when the graph moved one by more than this, metres...
+const REBUILD: f64 = 0.005;
+
+/// ...or turned one by more than this, radians.
+const REBUILD_TURN: f64 = 0.0005;
+
+/// One stop, kept so that later scans can be matched to it and its walls moved with it.
+#[derive(Debug, Clone)]
+struct Kept {
+    /// Its walls and bridges, in its scanner's frame.
+    walls: Vec<[Point; 2]>,
+    /// The same, indexed for matching.
+    local: WallMap,
+    /// Whether it was aligned: a scan ICP could not align stays out of the map.
+    aligned: bool,
+    /// Its farthest return, metres.
+    reach: f64,
+    /// The pose reported for it: odometry to the next stop counts from there.
+    reported: Pose,
+    /// The pose its walls were put in the map at.
+    placed: Pose,
 }
 
 /// The walls seen so far, and how new scans are read against them.
@@ -77,12 +139,14 @@ pub struct Reading {
 pub struct Mapper {
     params: MapperParams,
     map: WallMap,
+    kept: Vec<Kept>,
+    graph: PoseGraph,
 }
 
 impl Mapper {
     /// An empty map.
     pub fn new(params: MapperParams) -> Self {
-        Self { params, map: WallMap::new() }
+        Self { params, map: WallMap::new(), kept: Vec::new(), graph: PoseGraph::new() }
     }
 
     /// The parameters.
@@ -90,8 +154,17 @@ impl Mapper {
         &self.params
     }
 
-    /// Reads `scan`, taken where odometry says `odometry` (map frame) after driving
-    /// `driven` metres since the last scan; aligns it and adds its walls to the map.
+    /// Every stop's pose as the pose graph now has it, in the order read: a stop read before
+    /// a loop closure may since have moved from the estimate reported for it.
+    pub fn poses(&self) -> &[Pose] {
+        self.graph.poses()
+    }
+
+    /// Reads `scan`, taken where odometry says `odometry` (map frame: the pose reported for
+    /// the last scan, moved by what odometry measured since) after driving `driven` metres
+    /// since the last scan; aligns it to the map, matches it to the earlier stops near it one
+    /// by one, solves the pose graph, and puts its walls in the map (moving the earlier
+    /// stops' walls when the graph moved them).
     ///
     /// # Errors
     /// [`IngestError`] for an invalid scan or pose, or a scan with no valid return.
@@ -124,22 +197,175 @@ impl Mapper {
         };
         let alignment = (!self.map.is_empty())
             .then(|| icp::align(&local.points, odometry, Some(prior), &self.map, &icp));
-        let estimate = alignment.as_ref().map_or(*odometry, |a| a.pose);
-        let place = |q: Point| estimate.apply(q);
-        if alignment.as_ref().is_none_or(|a| a.fallback.is_none()) {
-            let walls: Vec<[Point; 2]> = local
-                .walls
-                .iter()
-                .chain(&local.bridges)
-                .map(|w| [place(w[0]), place(w[1])])
-                .collect();
-            self.map.extend_unseen(&walls, MAP_PIECE, MAP_SAME_WALL);
+        let aligned = alignment.as_ref().is_none_or(|a| a.fallback.is_none());
+        let initial = alignment.as_ref().map_or(*odometry, |a| a.pose);
+        let walls: Vec<[Point; 2]> = local.walls.iter().chain(&local.bridges).copied().collect();
+        let mut own = WallMap::new();
+        own.extend(&walls);
+        let k = self.graph.add_node(initial);
+        let mut links = 0;
+        if let Some(last) = self.kept.last() {
+            // Odometry since the last stop, as sure as the prior ICP was given.
+            let sd = [reach.max(prior.position), reach.max(prior.position), prior.heading];
+            self.graph.add_edge(Edge {
+                from: k - 1,
+                to: k,
+                measured: last.reported.inverse().compose(odometry),
+                information: diagonal(sd),
+            });
         }
+        if aligned && k > 0 {
+            links = self.link(k, &local.points, &initial, &icp);
+            if links == 0 {
+                // No single stop matched on its own: the map's alignment stands, tied to the
+                // nearest aligned stop.
+                if let Some(j) = self.nearest_aligned(&initial) {
+                    let information = icp::information(&local.points, &initial, &self.map, &icp);
+                    self.graph.add_edge(Edge {
+                        from: j,
+                        to: k,
+                        measured: self.graph.poses()[j].inverse().compose(&initial),
+                        information: scaled(information, 1.0 / LINK_INFLATION),
+                    });
+                }
+            }
+        }
+        self.graph.optimize(GRAPH_STEPS);
+        let estimate = self.graph.poses()[k];
+        let far = local.points.iter().map(|q| q[0].hypot(q[1])).fold(0.0, f64::max);
+        self.kept.push(Kept {
+            walls,
+            local: own,
+            aligned,
+            reach: far,
+            reported: estimate,
+            placed: estimate,
+        });
+        self.place_walls();
+        let place = |q: Point| estimate.apply(q);
         Ok(Reading {
             observation: local.observation.mapped(place),
             estimate,
             alignment,
+            links,
             cleaning: local.cleaning,
         })
     }
+
+    /// Matches the scan of stop `k` (its returns `points`, placed at `initial` by the map's
+    /// alignment) to each of the nearest [`MAX_LINKS`] aligned stops whose reach overlaps
+    /// its own, alone; every match that converged on [`LINK_MIN_PAIRS`] pairs becomes an
+    /// edge. Returns how many did.
+    fn link(&mut self, k: usize, points: &[Point], initial: &Pose, icp: &IcpParams) -> usize {
+        let far = points.iter().map(|q| q[0].hypot(q[1])).fold(0.0, f64::max);
+        let poses = self.graph.poses();
+        let mut near: Vec<(f64, usize)> = self
+            .kept
+            .iter()
+            .enumerate()
+            .filter(|(_, s)| s.aligned)
+            .map(|(j, s)| {
+                let d = (poses[j].x - initial.x).hypot(poses[j].y - initial.y);
+                (d, j, s.reach)
+            })
+            .filter(|&(d, _, r)| d <= r + far)
+            .map(|(d, j, _)| (d, j))
+            .collect();
+        near.sort_by(|a, b| a.0.total_cmp(&b.0).then(a.1.cmp(&b.1)));
+        near.truncate(MAX_LINKS);
+        // The graph as odometry alone leaves it: each match is tried on it alone, then the
+        // matches are added from the one that strains the graph least, each kept only when the
+        // graph can meet it together with those kept before it. A wrong match (a scan slid
+        // along one stop's walls) strains the measurements the graph already holds.
+        let mut graph = self.graph.clone();
+        graph.optimize(GRAPH_STEPS);
+        let base = graph.error();
+        let mut tried: Vec<(f64, Edge)> = Vec::new();
+        for (_, j) in near {
+            let from = self.graph.poses()[j];
+            let stop = &self.kept[j];
+            let start = from.inverse().compose(initial);
+            let a = icp::align(points, &start, Some(LINK_PRIOR), &stop.local, icp);
+            if a.fallback.is_some() || !a.converged || a.pairs < LINK_MIN_PAIRS {
+                continue;
+            }
+            let information = icp::information(points, &a.pose, &stop.local, icp);
+            let edge = Edge {
+                from: j,
+                to: k,
+                measured: a.pose,
+                information: scaled(information, 1.0 / LINK_INFLATION),
+            };
+            let mut trial = graph.clone();
+            trial.add_edge(edge);
+            trial.optimize(GRAPH_STEPS);
+            let strain = trial.error() - base;
+            if strain <= LINK_STRAIN {
+                tried.push((strain, edge));
+            }
+        }
+        tried.sort_by(|a, b| a.0.total_cmp(&b.0).then(a.1.from.cmp(&b.1.from)));
+        let mut links = 0;
+        let mut error = base;
+        for (_, edge) in tried {
+            let mut trial = graph.clone();
+            trial.add_edge(edge);
+            trial.optimize(GRAPH_STEPS);
+            let e = trial.error();
+            if e - error <= LINK_STRAIN {
+                (graph, error) = (trial, e);
+                links += 1;
+            }
+        }
+        self.graph = graph;
+        links
+    }
+
+    /// The aligned stop nearest `at`, if any.
+    fn nearest_aligned(&self, at: &Pose) -> Option<usize> {
+        let poses = self.graph.poses();
+        (0..self.kept.len()).filter(|&j| self.kept[j].aligned).min_by(|&a, &b| {
+            let d = |j: usize| (poses[j].x - at.x).hypot(poses[j].y - at.y);
+            d(a).total_cmp(&d(b)).then(a.cmp(&b))
+        })
+    }
+
+    /// Puts the newest stop's walls in the map; when the graph moved an earlier stop by more
+    /// than [`REBUILD`], rebuilds the map from every aligned stop at its pose, oldest first.
+    fn place_walls(&mut self) {
+        let poses = self.graph.poses();
+        let moved = self.kept.iter().zip(poses).any(|(s, p)| {
+            s.aligned
+                && ((s.placed.x - p.x).hypot(s.placed.y - p.y) > REBUILD
+                    || wrap(s.placed.theta - p.theta).abs() > REBUILD_TURN)
+        });
+        let placed = |s: &Kept, at: &Pose| -> Vec<[Point; 2]> {
+            s.walls.iter().map(|w| [at.apply(w[0]), at.apply(w[1])]).collect()
+        };
+        if moved {
+            self.map = WallMap::new();
+            for (s, p) in self.kept.iter_mut().zip(poses) {
+                if s.aligned {
+                    s.placed = *p;
+                    self.map.extend_unseen(&placed(s, p), MAP_PIECE, MAP_SAME_WALL);
+                }
+            }
+        } else if let Some(s) = self.kept.last().filter(|s| s.aligned) {
+            self.map.extend_unseen(&placed(s, &s.placed), MAP_PIECE, MAP_SAME_WALL);
+        }
+    }
+}
+
+/// An information matrix from standard deviations per axis.
+fn diagonal(sd: [f64; 3]) -> Information {
+    let mut m = [[0.0; 3]; 3];
+    for (k, s) in sd.iter().enumerate() {
+        m[k][k] = 1.0 / s.max(1e-9).powi(2);
+    }
+    m
+}
+
+/// `m` times `f`.
+fn scaled(m: Information, f: f64) -> Information {
+    m.map(|row| row.map(|v| v * f))
 }

@@ -85,6 +85,10 @@ pub struct Stop {
     pub heading_error: f64,
     /// What ICP did (none at the first stop: nothing was known).
     pub alignment: Option<Alignment>,
+    /// How many earlier stops the scan was matched to on its own and tied to in the pose
+    /// graph (loop closures included).
+    #[serde(default)]
+    pub links: usize,
     /// What cleaning did to the scan.
     pub cleaning: Cleaning,
 }
@@ -424,6 +428,7 @@ impl<'a> Robot<'a> {
             position_error: (belief.x - truth.x).hypot(belief.y - truth.y),
             heading_error: wrap(belief.theta - truth.theta),
             alignment: reading.alignment,
+            links: reading.links,
             cleaning: reading.cleaning,
         });
         if belief.at() != *self.out.believed_path.last().expect("starts with the start") {

@@ -1,0 +1,384 @@
+//! A pose graph over the stops: each scan's pose is a node; odometry between successive stops
+//! and scan matches between stops that saw the same walls are edges. Solving it (Gauss-Newton,
+//! robust to a wrong match) spreads a correction found late back over the stops before it, so
+//! that walls placed from a poorly aligned stop are moved where later, better constrained
+//! stops put them: a loop closure.
+//!
+//! Written here: the graph is small (the most recent [`WINDOW`] stops are solved, older ones
+//! stay where they are), and a dense Cholesky factorisation of at most `3 · WINDOW` unknowns
+//! costs well under a millisecond, which no linear-algebra dependency would improve on.
+
+use crate::protocol::laser::{Pose, wrap};
+
+/// The information (inverse covariance) of a measured relative pose, in `(x, y, θ)` of the
+/// frame of the edge's first node: metres⁻² and radians⁻².
+pub type Information = [[f64; 3]; 3];
+
+/// How many of the most recent nodes are solved; older nodes are held where they are.
+pub const WINDOW: usize = 64;
+
+/// An edge whose Mahalanobis distance is beyond this weighs less (a Huber kernel): one wrong
+/// scan match does not drag the graph.
+const ROBUST: f64 = 3.0;
+
+/// A measured pose of node `to` in the frame of node `from`.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Edge {
+    /// The node the measurement is relative to.
+    pub from: usize,
+    /// The node measured.
+    pub to: usize,
+    /// `to`'s pose in `from`'s frame.
+    pub measured: Pose,
+    /// How sure the measurement is.
+    pub information: Information,
+}
+
+/// Poses and the measurements between them.
+#[derive(Debug, Clone, Default, PartialEq)]
+pub struct PoseGraph {
+    poses: Vec<Pose>,
+    edges: Vec<Edge>,
+}
+
+impl PoseGraph {
+    /// An empty graph.
+    pub fn new() -> Self {
+        Self::default()
+    }
+
+    /// Adds a node at `pose` (its initial estimate); returns its index. Node 0 is the map
+    /// frame's anchor and never moves.
+    pub fn add_node(&mut self, pose: Pose) -> usize {
+        self.poses.push(pose);
+        self.poses.len() - 1
+    }
+
+    /// Adds a measurement between two existing nodes.
+    ///
+    /// # Panics
+    /// When either node does not exist.
+    pub fn add_edge(&mut self, edge: Edge) {
+        assert!(edge.from < self.poses.len() && edge.to < self.poses.len(), "no such node");
+        self.edges.push(edge);
+    }
+
+    /// The current estimate of every node.
+    pub fn poses(&self) -> &[Pose] {
+        &self.poses
+    }
+
+    /// The edges.
+    pub fn edges(&self) -> &[Edge] {
+        &self.edges
+    }
+
+    /// The residual of `edge` at the current poses, in the frame of its first node, with the
+    /// Jacobians with respect to the first and the second node's `(x, y, θ)`.
+    fn residual(&self, edge: &Edge) -> ([f64; 3], [[f64; 3]; 3], [[f64; 3]; 3]) {
+        let (a, b, z) = (self.poses[edge.from], self.poses[edge.to], edge.measured);
+        let (s, c) = a.theta.sin_cos();
+        let (dx, dy) = (b.x - a.x, b.y - a.y);
+        let e = [c * dx + s * dy - z.x, -s * dx + c * dy - z.y, wrap(b.theta - a.theta - z.theta)];
+        let ja = [[-c, -s, -s * dx + c * dy], [s, -c, -c * dx - s * dy], [0.0, 0.0, -1.0]];
+        let jb = [[c, s, 0.0], [-s, c, 0.0], [0.0, 0.0, 1.0]];
+        (e, ja, jb)
+    }
+
+    /// The weighted squared error of every edge (robust weights included): what
+    /// [`optimize`](Self::optimize) lowers.
+    pub fn error(&self) -> f64 {
+        self.edges
+            .iter()
+            .map(|edge| {
+                let (e, _, _) = self.residual(edge);
+                robust_cost(quadratic(&edge.information, &e))
+            })
+            .sum()
+    }
+
+    /// Gauss-Newton on the most recent [`WINDOW`] nodes (node 0 and older nodes held), at
+    /// most `iterations` steps, each edge weighted by a Huber kernel on its Mahalanobis
+    /// distance. Returns the steps taken.
+    pub fn optimize(&mut self, iterations: usize) -> usize {
+        let first = self.poses.len().saturating_sub(WINDOW).max(1);
+        let n = self.poses.len().saturating_sub(first);
+        if n == 0 {
+            return 0;
+        }
+        let dim = 3 * n;
+        for it in 0..iterations {
+            let mut h = vec![0.0; dim * dim];
+            let mut g = vec![0.0; dim];
+            for edge in &self.edges {
+                let free = |k: usize| (k >= first).then(|| 3 * (k - first));
+                let (fa, fb) = (free(edge.from), free(edge.to));
+                if fa.is_none() && fb.is_none() {
+                    continue;
+                }
+                let (e, ja, jb) = self.residual(edge);
+                let chi = quadratic(&edge.information, &e).sqrt();
+                let w = if chi <= ROBUST { 1.0 } else { ROBUST / chi };
+                let omega = edge.information.map(|row| row.map(|v| v * w));
+                // Ω·e and Jᵀ Ω J blocks.
+                let oe: [f64; 3] =
+                    std::array::from_fn(|i| (0..3).map(|k| omega[i][k] * e[k]).sum());
+                let blocks = [(fa, &ja), (fb, &jb)];
+                for (pi, ji) in blocks {
+                    let Some(pi) = pi else { continue };
+                    for r in 0..3 {
+                        g[pi + r] += (0..3).map(|k| ji[k][r] * oe[k]).sum::<f64>();
+                    }
+                    for (pj, jj) in blocks {
+                        let Some(pj) = pj else { continue };
+                        for r in 0..3 {
+                            for col in 0..3 {
+                                let v: f64 = (0..3)
+                                    .map(|k| {
+                                        ji[k][r]
+                                            * (0..3).map(|l| omega[k][l] * jj[l][col]).sum::<f64>()
+                                    })
+                                    .sum();
+                                h[(pi + r) * dim + pj + col] += v;
+                            }
+                        }
+                    }
+                }
+            }
+            // A node no edge reaches stays put.
+            for k in 0..dim {
+                h[k * dim + k] += 1e-9;
+            }
+            let Some(step) = cholesky_solve(&mut h, dim, &g) else { return it };
+            let mut largest = 0.0f64;
+            for (k, p) in self.poses[first..].iter_mut().enumerate() {
+                let d = &step[3 * k..3 * k + 3];
+                p.x -= d[0];
+                p.y -= d[1];
+                p.theta = wrap(p.theta - d[2]);
+                largest = largest.max(d[0].abs()).max(d[1].abs()).max(d[2].abs());
+            }
+            if largest < 1e-7 {
+                return it + 1;
+            }
+        }
+        iterations
+    }
+}
+
+/// `eᵀ Ω e`.
+fn quadratic(omega: &Information, e: &[f64; 3]) -> f64 {
+    (0..3).map(|i| e[i] * (0..3).map(|k| omega[i][k] * e[k]).sum::<f64>()).sum()
+}
+
+/// The Huber cost of a squared Mahalanobis distance.
+fn robust_cost(chi2: f64) -> f64 {
+    let chi = chi2.sqrt();
+    if chi <= ROBUST { chi2 } else { 2.0 * ROBUST * chi - ROBUST * ROBUST }
+}
+
+/// Solves `h x = g` for a symmetric positive definite `h` (row-major, `n × n`, overwritten by
+/// its Cholesky factor); `None` when it is not positive definite.
+fn cholesky_solve(h: &mut [f64], n: usize, g: &[f64]) -> Option<Vec<f64>> {
+    for j in 0..n {
+        let mut d = h[j * n + j];
+        for k in 0..j {
+            d -= h[j * n + k] * h[j * n + k];
+        }
+        if !(d > 0.0 && d.is_finite()) {
+            return None;
+        }
+        let d = d.sqrt();
+        h[j * n + j] = d;
+        for i in j + 1..n {
+            let mut v = h[i * n + j];
+            for k in 0..j {
+                v -= h[i * n + k] * h[j * n + k];
+            }
+            h[i * n + j] = v / d;
+        }
+    }
+    // L y = g, then Lᵀ x = y.
+    let mut x = g.to_vec();
+    for i in 0..n {
+        for k in 0..i {
+            x[i] -= h[i * n + k] * x[k];
+        }
+        x[i] /= h[i * n + i];
+    }
+    for i in (0..n).rev() {
+        for k in i + 1..n {
+            x[i] -= h[k * n + i] * x[k];
+        }
+        x[i] /= h[i * n + i];
+    }
+    Some(x)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn diag(p: f64, t: f64) -> Information {
+        [[1.0 / (p * p), 0.0, 0.0], [0.0, 1.0 / (p * p), 0.0], [0.0, 0.0, 1.0 / (t * t)]]
+    }
+
+    fn relative(a: &Pose, b: &Pose) -> Pose {
+        a.inverse().compose(b)
+    }
+
+    #[test]
+    fn the_jacobians_match_finite_differences() {
+        let mut g = PoseGraph::new();
+        g.add_node(Pose { x: 1.0, y: -2.0, theta: 0.7 });
+        g.add_node(Pose { x: 3.5, y: 0.5, theta: -1.2 });
+        let edge = Edge {
+            from: 0,
+            to: 1,
+            measured: Pose { x: 0.3, y: 2.0, theta: 0.4 },
+            information: diag(1.0, 1.0),
+        };
+        let (_, ja, jb) = g.residual(&edge);
+        let h = 1e-6;
+        for node in 0..2 {
+            for axis in 0..3 {
+                let bump = |g: &mut PoseGraph, s: f64| {
+                    let p = &mut g.poses[node];
+                    match axis {
+                        0 => p.x += s,
+                        1 => p.y += s,
+                        _ => p.theta += s,
+                    }
+                };
+                let mut plus = g.clone();
+                bump(&mut plus, h);
+                let mut minus = g.clone();
+                bump(&mut minus, -h);
+                let (ep, _, _) = plus.residual(&edge);
+                let (em, _, _) = minus.residual(&edge);
+                let jac = if node == 0 { &ja } else { &jb };
+                for r in 0..3 {
+                    let numeric = (ep[r] - em[r]) / (2.0 * h);
+                    assert!(
+                        (numeric - jac[r][axis]).abs() < 1e-6,
+                        "node {node} axis {axis} row {r}"
+                    );
+                }
+            }
+        }
+    }
+
+    #[test]
+    fn consistent_measurements_are_met_exactly() {
+        // A square loop, started from odometry that drifted; the scan matches are exact.
+        let truth = [
+            Pose { x: 0.0, y: 0.0, theta: 0.0 },
+            Pose { x: 4.0, y: 0.0, theta: 1.5 },
+            Pose { x: 4.0, y: 4.0, theta: 3.0 },
+            Pose { x: 0.0, y: 4.0, theta: -1.6 },
+        ];
+        let mut g = PoseGraph::new();
+        for (k, t) in truth.iter().enumerate() {
+            g.add_node(Pose {
+                x: t.x + 0.1 * k as f64,
+                y: t.y - 0.05 * k as f64,
+                theta: t.theta + 0.02,
+            });
+        }
+        for (a, b) in [(0, 1), (1, 2), (2, 3), (3, 0), (0, 2)] {
+            g.add_edge(Edge {
+                from: a,
+                to: b,
+                measured: relative(&truth[a], &truth[b]),
+                information: diag(0.05, 0.01),
+            });
+        }
+        // Node 0 was placed off its truth by nothing but the drift of the others.
+        g.poses[0] = truth[0];
+        g.optimize(20);
+        for (p, t) in g.poses().iter().zip(&truth) {
+            assert!((p.x - t.x).abs() < 1e-9 && (p.y - t.y).abs() < 1e-9, "{p:?} {t:?}");
+            assert!(wrap(p.theta - t.theta).abs() < 1e-9);
+        }
+        assert!(g.error() < 1e-12);
+    }
+
+    #[test]
+    fn a_sure_loop_closure_outweighs_drifted_odometry() {
+        // Odometry says the robot ended 0.5 m off; a confident match to the start says where
+        // it is. The stops between share the correction.
+        let mut g = PoseGraph::new();
+        let n = 6;
+        for k in 0..n {
+            g.add_node(Pose { x: k as f64, y: 0.1 * k as f64, theta: 0.0 });
+        }
+        for k in 1..n {
+            g.add_edge(Edge {
+                from: k - 1,
+                to: k,
+                measured: Pose { x: 1.0, y: 0.1, theta: 0.0 },
+                information: diag(0.1, 0.01),
+            });
+        }
+        g.add_edge(Edge {
+            from: 0,
+            to: n - 1,
+            measured: Pose { x: (n - 1) as f64, y: 0.0, theta: 0.0 },
+            information: diag(0.01, 0.001),
+        });
+        g.optimize(20);
+        let last = g.poses()[n - 1];
+        assert!((last.x - (n - 1) as f64).abs() < 0.01 && last.y.abs() < 0.02, "{last:?}");
+        // The middle moved part of the way.
+        let mid = g.poses()[3];
+        assert!(mid.y > 0.0 && mid.y < 0.3, "{mid:?}");
+    }
+
+    #[test]
+    fn one_wrong_match_is_outvoted() {
+        // Three consistent matches and one that is 1 m off: the robust kernel keeps the
+        // node near the three.
+        let mut g = PoseGraph::new();
+        g.add_node(Pose::default());
+        g.add_node(Pose { x: 2.0, y: 0.0, theta: 0.0 });
+        let sure = diag(0.05, 0.01);
+        for _ in 0..3 {
+            g.add_edge(Edge {
+                from: 0,
+                to: 1,
+                measured: Pose { x: 2.0, y: 0.0, theta: 0.0 },
+                information: sure,
+            });
+        }
+        g.add_edge(Edge {
+            from: 0,
+            to: 1,
+            measured: Pose { x: 3.0, y: 0.0, theta: 0.0 },
+            information: sure,
+        });
+        g.optimize(50);
+        assert!((g.poses()[1].x - 2.0).abs() < 0.1, "{:?}", g.poses()[1]);
+    }
+
+    #[test]
+    fn nodes_before_the_window_hold() {
+        let mut g = PoseGraph::new();
+        for k in 0..WINDOW + 5 {
+            g.add_node(Pose { x: k as f64, y: 0.0, theta: 0.0 });
+        }
+        for k in 1..WINDOW + 5 {
+            g.add_edge(Edge {
+                from: k - 1,
+                to: k,
+                measured: Pose { x: 1.0, y: 0.2, theta: 0.0 },
+                information: diag(0.1, 0.01),
+            });
+        }
+        let before = g.poses()[..5].to_vec();
+        g.optimize(10);
+        assert_eq!(&g.poses()[..5], &before[..]);
+        // The free nodes followed their odometry from the held ones.
+        let p = g.poses()[WINDOW + 4];
+        assert!((p.y - 0.2 * (WINDOW as f64)).abs() < 1e-6, "{p:?}");
+    }
+}
