@@ -7,11 +7,12 @@
 //! every later alignment.
 //!
 //! **Loop closure.** Every stop is a node of a [pose graph](super::posegraph). Odometry ties
-//! each stop to the one before (as sure as its drift over the metres driven), and each aligned
-//! scan is matched on its own to the nearest [`MAX_LINKS`] earlier stops whose reach overlaps
-//! its own. A match that converged on [`LINK_MIN_PAIRS`] pairs becomes an edge when the graph
-//! can meet it without straining what it already holds (a scan slid along one stop's walls
-//! would). The graph is solved after every scan, and when it moved an earlier stop, the map's
+//! each stop to the one before (as sure as its drift over the metres driven); an aligned scan
+//! is tied by its alignment to the map to the nearest aligned stop, and matched on its own to
+//! the nearest [`MAX_LINKS`] earlier stops whose reach overlaps its own. A match that converged
+//! on [`LINK_MIN_PAIRS`] pairs becomes an edge when the graph can meet it without straining
+//! what it already holds (a scan slid along one stop's walls would, and so would a match that
+//! disagrees with a well-constrained alignment to the map). The graph is solved after every scan, and when it moved an earlier stop, the map's
 //! walls are put again where their stops now are. So a stop placed wrongly along a corridor
 //! (odometry kept along it) is moved when a later stop sees both its walls and walls placed
 //! well, and the next scans align to walls in their right places. The pose reported for a
@@ -215,20 +216,18 @@ impl Mapper {
             });
         }
         if aligned && k > 0 {
-            links = self.link(k, &local.points, &initial, &icp);
-            if links == 0 {
-                // No single stop matched on its own: the map's alignment stands, tied to the
-                // nearest aligned stop.
-                if let Some(j) = self.nearest_aligned(&initial) {
-                    let information = icp::information(&local.points, &initial, &self.map, &icp);
-                    self.graph.add_edge(Edge {
-                        from: j,
-                        to: k,
-                        measured: self.graph.poses()[j].inverse().compose(&initial),
-                        information: scaled(information, 1.0 / LINK_INFLATION),
-                    });
-                }
+            // The map's alignment, tied to the nearest aligned stop: a match to a single stop
+            // that disagrees with it must outweigh it.
+            if let Some(j) = self.nearest_aligned(&initial) {
+                let information = icp::information(&local.points, &initial, &self.map, &icp);
+                self.graph.add_edge(Edge {
+                    from: j,
+                    to: k,
+                    measured: self.graph.poses()[j].inverse().compose(&initial),
+                    information: scaled(information, 1.0 / LINK_INFLATION),
+                });
             }
+            links = self.link(k, &local.points, &initial, &icp);
         }
         self.graph.optimize(GRAPH_STEPS);
         let estimate = self.graph.poses()[k];
