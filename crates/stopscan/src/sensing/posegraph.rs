@@ -381,4 +381,44 @@ mod tests {
         let p = g.poses()[WINDOW + 4];
         assert!((p.y - 0.2 * (WINDOW as f64)).abs() < 1e-6, "{p:?}");
     }
+
+    proptest::proptest! {
+        /// Measurements taken from true poses are all met at the truth, so from a perturbed
+        /// start the solve returns to it: whatever the graph's shape, the information's
+        /// scale, or where the stops stand.
+        #[test]
+        fn exact_measurements_bring_every_stop_back_to_its_truth(
+            truth in proptest::collection::vec((-20.0..20.0f64, -20.0..20.0f64, -3.1..3.1f64), 2..12),
+            extra in proptest::collection::vec((0usize..12, 0usize..12), 0..12),
+            noise in proptest::collection::vec((-0.2..0.2f64, -0.2..0.2f64, -0.1..0.1f64), 12),
+            scale in proptest::collection::vec((1.0..1000.0f64, 1.0..1000.0f64), 24),
+        ) {
+            let truth: Vec<Pose> = truth.iter().map(|&(x, y, theta)| Pose { x, y, theta }).collect();
+            let n = truth.len();
+            let mut g = PoseGraph::new();
+            for (k, t) in truth.iter().enumerate() {
+                let (dx, dy, dt) = if k == 0 { (0.0, 0.0, 0.0) } else { noise[k] };
+                g.add_node(Pose { x: t.x + dx, y: t.y + dy, theta: wrap(t.theta + dt) });
+            }
+            let pairs: Vec<(usize, usize)> = (1..n)
+                .map(|k| (k - 1, k))
+                .chain(extra.iter().map(|&(a, b)| (a % n, b % n)).filter(|(a, b)| a != b))
+                .collect();
+            for (i, &(a, b)) in pairs.iter().enumerate() {
+                let (p, t) = scale[i % scale.len()];
+                g.add_edge(Edge {
+                    from: a,
+                    to: b,
+                    measured: relative(&truth[a], &truth[b]),
+                    information: diag(1.0 / p.sqrt(), 1.0 / t.sqrt()),
+                });
+            }
+            g.optimize(50);
+            for (p, t) in g.poses().iter().zip(&truth) {
+                proptest::prop_assert!((p.x - t.x).abs() < 1e-6 && (p.y - t.y).abs() < 1e-6, "{:?} {:?}", p, t);
+                proptest::prop_assert!(wrap(p.theta - t.theta).abs() < 1e-6);
+            }
+            proptest::prop_assert!(g.error() < 1e-9);
+        }
+    }
 }
