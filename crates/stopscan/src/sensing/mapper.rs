@@ -203,6 +203,8 @@ impl Mapper {
         let walls: Vec<[Point; 2]> = local.walls.iter().chain(&local.bridges).copied().collect();
         let mut own = WallMap::new();
         own.extend(&walls);
+        // The farthest return: how far the scan reaches.
+        let far = local.points.iter().map(|q| q[0].hypot(q[1])).fold(0.0, f64::max);
         let k = self.graph.add_node(initial);
         let mut links = 0;
         if let Some(last) = self.kept.last() {
@@ -227,11 +229,10 @@ impl Mapper {
                     information: scaled(information, 1.0 / LINK_INFLATION),
                 });
             }
-            links = self.link(k, &local.points, &initial, &icp);
+            links = self.link(k, &local.points, far, &initial, &icp);
         }
         self.graph.optimize(GRAPH_STEPS);
         let estimate = self.graph.poses()[k];
-        let far = local.points.iter().map(|q| q[0].hypot(q[1])).fold(0.0, f64::max);
         self.kept.push(Kept {
             walls,
             local: own,
@@ -251,12 +252,18 @@ impl Mapper {
         })
     }
 
-    /// Matches the scan of stop `k` (its returns `points`, placed at `initial` by the map's
-    /// alignment) to each of the nearest [`MAX_LINKS`] aligned stops whose reach overlaps
-    /// its own, alone; every match that converged on [`LINK_MIN_PAIRS`] pairs becomes an
-    /// edge. Returns how many did.
-    fn link(&mut self, k: usize, points: &[Point], initial: &Pose, icp: &IcpParams) -> usize {
-        let far = points.iter().map(|q| q[0].hypot(q[1])).fold(0.0, f64::max);
+    /// Matches the scan of stop `k` (its returns `points`, reaching `far` metres, placed at
+    /// `initial` by the map's alignment) to each of the nearest [`MAX_LINKS`] aligned stops
+    /// whose reach overlaps its own, alone; every match that converged on [`LINK_MIN_PAIRS`]
+    /// pairs becomes an edge. Returns how many did.
+    fn link(
+        &mut self,
+        k: usize,
+        points: &[Point],
+        far: f64,
+        initial: &Pose,
+        icp: &IcpParams,
+    ) -> usize {
         let poses = self.graph.poses();
         let mut near: Vec<(f64, usize)> = self
             .kept
