@@ -8,7 +8,7 @@ use std::process::Command;
 
 use serde_json::Value;
 
-#[path = "../../stopscan/tests/support/seen.rs"]
+#[path = "../../stopscan/tests/it/support/seen.rs"]
 mod seen;
 use seen::seen_share;
 

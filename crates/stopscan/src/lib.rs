@@ -54,7 +54,7 @@
 //! ## The modules, lowest layer first
 //!
 //! A module imports only the ones above it in this list (ARCHITECTURE.md; checked by
-//! `tests/layers.rs`).
+//! `tests/it/layers.rs`).
 //! - [`kernel`]: exact predicates (the only caller of `robust`);
 //! - [`geometry`]: the validated [`geometry::Domain`] (a polygon with holes) and its frame;
 //! - [`algorithm`]: triangulation, visibility, window cover, regions, shortest paths, MDPs,

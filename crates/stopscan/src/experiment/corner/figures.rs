@@ -533,7 +533,7 @@ pub(super) fn circle_fig_7(seed: u64) -> Result<Reproduction, ExperimentError> {
             ),
             "the robot stops once it sees the edge and the corner sees every edge, so a spare scan point can wait at the corner for free: the optimum with exactly k points equals the optimum with at most k".into(),
             "the model: edges over the whole (0°, 180°] behind the corner, the optimum for an edge at θ is one scan at the nearest point seeing it (1 + d·sin θ up to 90°, 1 + d beyond), a scan point sees edges up to its angle ∠ABP and the corner sees all, so the robot always ends at the corner when no point has seen the edge".into(),
-            "every worst-case ratio of the optimiser is exact (breakpoint enumeration) for the printed points (rounded to 1e-9); a property test compares it with an independent brute force over edge angles in (0°, 180°] (tests/corner.rs)".into(),
+            "every worst-case ratio of the optimiser is exact (breakpoint enumeration) for the printed points (rounded to 1e-9); a property test compares it with an independent brute force over edge angles in (0°, 180°] (tests/it/corner.rs)".into(),
             "Theorem 1: with c < 2 the recursion collapses before the corner and never gets further than 1/(2 − c) from the start".into(),
         ],
     )

@@ -1,7 +1,7 @@
 //! `stopscan completions SHELL` and `stopscan man`: generated from the same clap definitions
 //! as `--help`, so every command `--help` lists has its completion and its page.
 
-mod common;
+use crate::common;
 
 use common::{stopscan, temp};
 

@@ -1,6 +1,6 @@
 //! `stopscan bench`: the JSON contract of every benchmark.
 
-mod common;
+use crate::common;
 
 use common::{f, json};
 

@@ -1,6 +1,6 @@
 //! `stopscan map import`.
 
-mod common;
+use crate::common;
 
 use std::path::PathBuf;
 

@@ -3,7 +3,7 @@
 //! over TCP; malformed messages get errors naming the field; `kill -9` at random moments,
 //! with `--resume`, ends with the same journal, byte for byte, as an uninterrupted run.
 
-mod common;
+use crate::common;
 
 use std::io::{BufRead, BufReader, Write};
 use std::path::Path;
@@ -24,7 +24,7 @@ use stopscan::world::polygon::PolygonWorld;
 
 use common::{mcap_count, mcap_topic, read_mcap, temp};
 
-#[path = "../../stopscan/tests/support/seen.rs"]
+#[path = "../../../stopscan/tests/it/support/seen.rs"]
 mod seen;
 use seen::seen_share;
 

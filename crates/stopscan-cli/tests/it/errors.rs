@@ -1,6 +1,6 @@
 //! Errors across commands: clear messages, no panics, outputs checked before any work.
 
-mod common;
+use crate::common;
 
 use common::{assert_no_temporary_files, fails, fixture, stopscan, temp};
 

@@ -1,6 +1,6 @@
 //! `stopscan corner …`: demo, circle, thresholds, optimal, collapse, ratio, policy, simulate.
 
-mod common;
+use crate::common;
 
 use std::process::Command;
 

@@ -1,6 +1,6 @@
 //! The main job (`stopscan` with no command), run as a user would.
 
-mod common;
+use crate::common;
 
 use std::path::PathBuf;
 use std::process::Command;

@@ -7,7 +7,7 @@
 //! message, unless `STOPSCAN_CI` is set (as `.ci/run` sets it, after installing
 //! Debian's chromium), when they fail.
 
-mod common;
+use crate::common;
 
 use std::path::{Path, PathBuf};
 use std::process::Command;

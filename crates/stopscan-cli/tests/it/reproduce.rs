@@ -1,6 +1,6 @@
 //! `stopscan reproduce`: every paper table and figure.
 
-mod common;
+use crate::common;
 
 use std::process::Command;
 

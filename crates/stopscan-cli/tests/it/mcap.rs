@@ -6,7 +6,7 @@
 //! Without python3 and its `mcap` package the tests are skipped with a message, unless
 //! `STOPSCAN_CI` is set (as `.ci/run` sets it, after installing them), when they fail.
 
-mod common;
+use crate::common;
 
 use serde_json::Value;
 

@@ -1,6 +1,6 @@
 //! `stopscan roi`: missions, their state files, resume and the field pipeline.
 
-mod common;
+use crate::common;
 
 use std::path::PathBuf;
 use std::process::Command;

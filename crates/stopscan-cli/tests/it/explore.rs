@@ -1,6 +1,6 @@
 //! `stopscan explore`: one environment, a sweep of a folder, and `generate` to make inputs.
 
-mod common;
+use crate::common;
 
 use serde_json::Value;
 

@@ -1,6 +1,6 @@
 //! The soft and hard size limits of every command, and `--allow-large`.
 
-mod common;
+use crate::common;
 
 use common::{fails, fixture, stopscan, temp};
 

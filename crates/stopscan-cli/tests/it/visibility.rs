@@ -1,6 +1,6 @@
 //! `stopscan visibility` (and `bench visibility`).
 
-mod common;
+use crate::common;
 
 use serde_json::Value;
 
