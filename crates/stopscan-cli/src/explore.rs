@@ -247,6 +247,23 @@ fn summary(w: &mut dyn Write, o: &RunRecord) -> std::io::Result<()> {
             t.row(vec![k.into(), v]);
         }
     }
+    // From raw scans: how far the believed poses were from the truth at the stops (coverage
+    // above is measured where the scans were truly taken).
+    if let Some(raw) = &o.raw_scans {
+        let rows: [(&str, String); 5] = [
+            ("position error at a stop, max (m)", num(Some(raw.max_position_error), 3)),
+            ("position error at a stop, mean (m)", num(Some(raw.mean_position_error), 3)),
+            ("heading error at a stop, max (rad)", num(Some(raw.max_heading_error), 4)),
+            (
+                "ICP kept odometry (stops; degenerate walls)",
+                format!("{}; {}", raw.icp_fallbacks, raw.icp_degenerate),
+            ),
+            ("scan matches tied into the pose graph", raw.graph_links.to_string()),
+        ];
+        for (k, v) in rows {
+            t.row(vec![k.into(), v]);
+        }
+    }
     t.write(w)
 }
 

@@ -399,6 +399,47 @@ fn raw_scans_from_a_simulated_lidar() {
     assert!(f(&r["robot"], "coverage_of_reachable") > 0.99, "{r}");
     // Byte-identical for the same seed.
     assert_eq!(run("5").1, bytes);
+    // The table prints the worst and mean position error at a stop: those of the stops'
+    // true and believed poses in the record, recomputed here from the poses themselves.
+    let errors: Vec<f64> = raw["stops"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|s| {
+            let (t, e) = (&s["truth"], &s["estimate"]);
+            (f(e, "x") - f(t, "x")).hypot(f(e, "y") - f(t, "y"))
+        })
+        .collect();
+    let max = errors.iter().copied().fold(0.0, f64::max);
+    let mean = errors.iter().sum::<f64>() / errors.len() as f64;
+    let text = common::stopscan(&[
+        "--seed",
+        "5",
+        "explore",
+        "--env",
+        &map,
+        "--robot-radius",
+        "0.2",
+        "--sensor",
+        "lidar:beams=360,sigma=0.01,dropout=0.02",
+        "--odometry-drift",
+        "0.01",
+        "--out",
+        dir.join("again.json").to_str().unwrap(),
+    ]);
+    assert!(text.status.success());
+    let text = String::from_utf8(text.stdout).unwrap();
+    let value = |name: &str| -> String {
+        let line = text.lines().find(|l| l.starts_with(name)).unwrap_or_else(|| panic!("{text}"));
+        line.split_whitespace().last().unwrap().to_string()
+    };
+    assert_eq!(value("position error at a stop, max (m)"), format!("{max:.3}"), "{text}");
+    assert_eq!(value("position error at a stop, mean (m)"), format!("{mean:.3}"), "{text}");
+    assert_eq!(
+        value("scan matches tied into the pose graph"),
+        raw["graph_links"].to_string(),
+        "{text}"
+    );
 }
 
 #[test]
