@@ -107,6 +107,11 @@ impl Target {
     pub(super) fn base(&self) -> usize {
         self.anchor.unwrap_or(self.view)
     }
+
+    /// The view whose window part the target is for.
+    pub(super) fn view(&self) -> usize {
+        self.view
+    }
 }
 
 /// Where on the uncovered part of a window the next viewpoint goes (the paper leaves it open:
@@ -932,6 +937,64 @@ impl Known {
             .collect()
     }
 
+    /// Viewpoints in the corners of view `view`'s region: each convex corner stepped along its
+    /// bisector into the region until it stands `inset` beyond the clearance from both of its
+    /// sides, kept when the robot reaches it straight from the view's viewpoint keeping its
+    /// clearance and no scan was taken there; the `max` nearest to `near` within `within`.
+    /// The corners of a room hold the places from where one scan sees all around a desk.
+    pub(super) fn corner_points(
+        &self,
+        view: usize,
+        near: Point,
+        within: f64,
+        inset: f64,
+        max: usize,
+    ) -> Vec<Point> {
+        let v = &self.views[view];
+        let c = self.clearance(view);
+        let poly = &v.polygon;
+        let n = poly.len();
+        let d = |p: Point| (p[0] - near[0]).hypot(p[1] - near[1]);
+        let mut out: Vec<(f64, Point)> = (0..n)
+            .filter_map(|i| {
+                let (a, p, b) = (poly[(i + n - 1) % n], poly[i], poly[(i + 1) % n]);
+                if d(p) > within {
+                    return None;
+                }
+                let (u, w) = ([a[0] - p[0], a[1] - p[1]], [b[0] - p[0], b[1] - p[1]]);
+                let (lu, lw) = (u[0].hypot(u[1]), w[0].hypot(w[1]));
+                if lu == 0.0 || lw == 0.0 || (p[0] - a[0]) * w[1] - (p[1] - a[1]) * w[0] <= 0.0 {
+                    return None;
+                }
+                let (u, w) = ([u[0] / lu, u[1] / lu], [w[0] / lw, w[1] / lw]);
+                let bis = [u[0] + w[0], u[1] + w[1]];
+                let lb = bis[0].hypot(bis[1]);
+                // sin of half the corner's angle: the step along the bisector that puts the
+                // point `c + inset` from both sides.
+                let half_sin = (u[0] * w[1] - u[1] * w[0]).abs() / lb;
+                if lb == 0.0 || half_sin < 0.2 {
+                    return None;
+                }
+                let s = (c + inset) / half_sin;
+                let z = [p[0] + s * bis[0] / lb, p[1] + s * bis[1] / lb];
+                (v.reaches(z) && (c == 0.0 || v.clear(z, c, self.relaxed())) && !self.stood_at(z))
+                    .then_some((d(z), z))
+            })
+            .collect();
+        out.sort_by(|x, y| x.0.total_cmp(&y.0));
+        out.into_iter().take(max).map(|x| x.1).collect()
+    }
+
+    /// The viewpoint of view `view`.
+    pub(super) fn viewpoint(&self, view: usize) -> Point {
+        self.views[view].at
+    }
+
+    /// The view's region (counter-clockwise) and its boundary pieces.
+    pub(super) fn region_of(&self, view: usize) -> (&[Point], &[BoundaryPiece]) {
+        (&self.views[view].polygon, &self.views[view].pieces)
+    }
+
     /// Whether `z`, a point inside view `view`'s region, sees the middle of the segment
     /// `g` on the region's boundary across the region (a straight line that crosses none of
     /// its edges).
@@ -1250,12 +1313,6 @@ fn sees_across(shape: &[Vec<Point>], z: Point, m: Point) -> bool {
     })
 }
 
-/// The angle (radians, in [0, π]) the segment `g` subtends from `z`.
-pub(super) fn subtended(z: Point, g: [Point; 2]) -> f64 {
-    let (a, b) = ([g[0][0] - z[0], g[0][1] - z[1]], [g[1][0] - z[0], g[1][1] - z[1]]);
-    (a[0] * b[1] - a[1] * b[0]).abs().atan2(a[0] * b[0] + a[1] * b[1])
-}
-
 /// The length of the polyline from `from` through `pts`.
 fn path_length(from: Point, pts: &[Point]) -> f64 {
     let mut len = 0.0;
@@ -1362,6 +1419,34 @@ mod tests {
         k.add(&scan([1.0, 1.0]));
         k.add(&scan([9.0, 1.0]));
         k
+    }
+
+    #[test]
+    fn corner_points_stand_inset_beyond_the_clearance_from_both_walls() {
+        use crate::algorithm::visibility::Visibility;
+        use crate::geometry::Domain;
+        let ring = vec![[0.0, 0.0], [4.0, 0.0], [4.0, 3.0], [0.0, 3.0]];
+        let vis = Visibility::new(Domain::new(ring, vec![]).unwrap()).unwrap();
+        let at = [1.0, 1.0];
+        let setup =
+            RobotSetup { footprint: Footprint::disc(0.2).unwrap(), ..RobotSetup::default() };
+        let mut k = Known::for_robot(&setup);
+        k.add(&PolygonObservation { at, region: vis.query(at).unwrap() });
+        let c = k.clearance(0);
+        let s = c + 0.1;
+        let pts = k.corner_points(0, at, 10.0, 0.1, 16);
+        // Nearest to the viewpoint first.
+        let want = [[s, s], [s, 3.0 - s], [4.0 - s, s], [4.0 - s, 3.0 - s]];
+        assert_eq!(pts.len(), 4, "{pts:?}");
+        for (p, w) in pts.iter().zip(want) {
+            assert!(
+                (p[0] - w[0]).abs() < 1e-9 && (p[1] - w[1]).abs() < 1e-9,
+                "{p:?} against {w:?}"
+            );
+        }
+        // The nearest ones only, and none beyond `within`.
+        assert_eq!(k.corner_points(0, at, 10.0, 0.1, 2).len(), 2);
+        assert_eq!(k.corner_points(0, [0.0, 0.0], 1.0, 0.1, 16).len(), 1);
     }
 
     #[test]

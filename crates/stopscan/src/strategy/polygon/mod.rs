@@ -22,6 +22,7 @@ mod greedy_nbv;
 mod known;
 mod nearest_frontier;
 mod range_limited;
+mod raster;
 mod trip;
 
 pub use cost_aware::CostAware;
