@@ -153,6 +153,10 @@ pub enum InvalidExploreLiteParams {
 ///   counterpart: a frontier whose goal cell is where a scan already stood (the robot's own
 ///   cell included) is blacklisted, since a scan there would see nothing new. A frontier with
 ///   no reachable safe cell, or no A* path, is blacklisted as move_base's failure would.
+/// - **After a failed move** (on raw scans or a real robot: the navigation stack refused or
+///   aborted a goal) the goal is blacklisted, the robot drives back to the last waypoint it
+///   reached (a safe cell's centre) and plans again from there, as explore_lite replans from
+///   wherever the robot stands.
 /// - **`orientation_scale`** does nothing in explore_lite either; it is not modelled.
 /// - **Cost and centroid.** explore_lite multiplies the distance (already in metres) by the
 ///   resolution once more; here both terms are in metres, `potential_scale · distance −
@@ -405,7 +409,9 @@ impl PolygonStrategy for ExploreLite {
             PolygonFeedback::Start { .. } => Action::Scan,
             PolygonFeedback::Arrived => match self.trip.arrived() {
                 Next::Act(a) => a,
-                Next::Replan => match self.last.as_ref().map(|l| l.at) {
+                // Where the trip starts anew: the last scan, or the waypoint a way back after a
+                // failed move ended at.
+                Next::Replan => match self.trip.start().or(self.last.as_ref().map(|l| l.at)) {
                     Some(at) => self.plan(at),
                     None => Action::Done,
                 },
@@ -420,7 +426,8 @@ impl PolygonStrategy for ExploreLite {
                 if let Some(g) = self.goal.take() {
                     self.blacklist.push(g);
                 }
-                self.trip.failed()
+                // Every waypoint is a safe cell's centre: plan again from the latest one reached.
+                self.trip.failed_back_to(|_| true)
             }
         }
     }

@@ -1157,13 +1157,15 @@ impl Known {
     }
 
     /// A move failed: the target the trip was for is dropped (its window part counted in
-    /// [`Skipped::move_failed`]) and the robot drives back to where the trip started.
+    /// [`Skipped::move_failed`]) and the robot drives back to the latest viewpoint the trip
+    /// passed ([`Trip::failed_back_to`]), to plan again from there.
     fn move_failed(&mut self) -> Action<Point> {
         if let Some(t) = self.pending.take() {
             self.handled(&t);
             self.skipped.move_failed += 1;
         }
-        self.trip.failed()
+        let views = &self.views;
+        self.trip.failed_back_to(|p| views.iter().any(|v| v.at == p))
     }
 
     /// The chain of views from `v` up to the root.
@@ -1346,7 +1348,14 @@ pub(super) fn act<S>(
         PolygonFeedback::Arrived => match known(s).trip.arrived() {
             Next::Act(a) => a,
             Next::Replan => {
-                let v = known(s).here;
+                // Back where the trip started, or at the viewpoint a way back ended at.
+                let k = known(s);
+                if let Some(p) = k.trip.start()
+                    && let Some(v) = k.views.iter().position(|w| w.at == p)
+                {
+                    k.here = v;
+                }
+                let v = k.here;
                 replan(s, v)
             }
         },

@@ -11,8 +11,11 @@
 //! - `greedy_nbv`: [`GreedyNbv`], the most predicted area per second of cost;
 //! - `explore_lite`: [`ExploreLite`], explore_lite's frontier explorer on an occupancy raster
 //!   of what has been seen (the baseline ROS users run);
-//! - `cost_aware`: [`CostAware`], stopscan's own: viewpoints on and off windows, weighed by
-//!   the predicted new area behind the windows they see against travel and scan time.
+//! - `cost_aware`: [`CostAware`], stopscan's own: viewpoints on and off windows (room corners
+//!   among them), weighed by the unknown area rays cast on a raster of what was seen predict
+//!   they see, against travel and scan time;
+//! - `raster`: the occupancy raster of the views that explore_lite plans on and cost_aware
+//!   casts its rays on.
 
 mod approach;
 mod cost_aware;

@@ -37,6 +37,10 @@ pub(super) struct Trip {
     /// Failed moves since the last arrival.
     #[serde(default)]
     failures: u32,
+    /// Where the way back after a failed move ends, when not at the start: the trip starts
+    /// anew there.
+    #[serde(default)]
+    back_to: Option<Point>,
 }
 
 /// What the strategy does after an arrival.
@@ -84,9 +88,37 @@ impl Trip {
         if self.returning && self.route.is_empty() {
             self.returning = false;
             self.driven.clear();
+            if let Some(p) = self.back_to.take() {
+                self.start = Some(p);
+            }
             return Next::Replan;
         }
         Next::Act(self.next_move())
+    }
+
+    /// Where the trip started: the last scan's viewpoint, or where a way back after a failed
+    /// move ended.
+    pub(super) fn start(&self) -> Option<Point> {
+        self.start
+    }
+
+    /// [`failed`](Self::failed), with the way back ending at the latest waypoint reached for
+    /// which `keep` holds (a viewpoint: from there every route the strategy knows is valid
+    /// again), or at the start if none does. The robot drives less on odometry alone than all
+    /// the way back: after a long trip without a scan, odometry's drift could put a way back
+    /// of tens of metres into the shelves (the warehouse, `cost_aware`, seed 3, which then
+    /// gave up at 97% of the area).
+    pub(super) fn failed_back_to(&mut self, keep: impl Fn(Point) -> bool) -> Action<Point> {
+        if self.returning || self.start.is_none() || self.failures >= MAX_MOVE_FAILURES {
+            return self.failed();
+        }
+        let Some(k) = self.driven.iter().rposition(|&p| keep(p)) else { return self.failed() };
+        self.failures += 1;
+        self.back_to = Some(self.driven[k]);
+        self.route = self.driven[k..].to_vec();
+        self.returning = true;
+        self.issued = None;
+        self.next_move()
     }
 
     /// The robot could not reach the waypoint it was sent to: the way back to where the trip
@@ -136,6 +168,32 @@ mod tests {
         assert_eq!(t.arrived(), Next::Act(Action::MoveTo { to: [0.0, 0.0] }));
         assert_eq!(t.arrived(), Next::Replan);
         assert!(!t.returning);
+    }
+
+    #[test]
+    fn a_failed_move_drives_back_only_to_the_latest_waypoint_kept() {
+        let mut t = Trip::default();
+        t.begin([0.0, 0.0]);
+        t.set_route(vec![[3.0, 0.0], [2.0, 0.0], [1.0, 0.0]]);
+        t.next_move();
+        t.arrived();
+        t.arrived();
+        // Blocked between (2, 0) and (3, 0), and (1, 0) is a viewpoint: back to (2, 0), then
+        // (1, 0), where the trip starts anew.
+        let viewpoint = |p: Point| p == [1.0, 0.0];
+        assert_eq!(t.failed_back_to(viewpoint), Action::MoveTo { to: [2.0, 0.0] });
+        assert_eq!(t.arrived(), Next::Act(Action::MoveTo { to: [1.0, 0.0] }));
+        assert_eq!(t.arrived(), Next::Replan);
+        assert_eq!(t.start(), Some([1.0, 0.0]));
+        // With no waypoint kept, all the way back to the start, as `failed` does.
+        t.begin([0.0, 0.0]);
+        t.set_route(vec![[2.0, 0.0], [1.0, 0.0]]);
+        t.next_move();
+        t.arrived();
+        assert_eq!(t.failed_back_to(|_| false), Action::MoveTo { to: [1.0, 0.0] });
+        assert_eq!(t.arrived(), Next::Act(Action::MoveTo { to: [0.0, 0.0] }));
+        assert_eq!(t.arrived(), Next::Replan);
+        assert_eq!(t.start(), Some([0.0, 0.0]));
     }
 
     #[test]
