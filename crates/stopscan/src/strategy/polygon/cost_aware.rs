@@ -42,8 +42,11 @@
 //! `bench floors` (the five shared maps and 12 offices, one run with the other strategies):
 //! 281 scans and 12,043 s, against 300 and 12,367 s before the raster's gain, the corners and
 //! the horizon (0.89 × `depth_first`'s 13,546 s and 0.79 × `explore_lite`'s 15,240 s; the
-//! issue asks for 0.75 × both); on 16 other offices (`--seed 100 --offices 16`) 311 scans and
-//! 12,918 s, against 342 and 13,486 s.
+//! issue asks for 0.75 × both); on 16 other offices (`--seed 100 --offices 16`) 317 scans and
+//! 13,125 s, against 13,688 s (`depth_first` 15,109 s, `explore_lite` 15,997 s). The choices
+//! below were compared on the benchmark's maps and on 16 offices of `stopscan --seed S
+//! generate office` for S = 100 to 115 (rooms and desks as `bench floors` draws them, no
+//! start), where this strategy took 311 scans and 12,918 s against 342 and 13,486 s.
 //!
 //! # Why one-step choices stop short of 0.75
 //! With an oracle in place of the prediction (the true new area of every candidate's scan,
@@ -106,7 +109,8 @@ const STEP_BACK: [f64; 2] = [2.0, 4.0];
 /// How many seconds beyond the soonest part's viewpoint a part's own viewpoint may lie for
 /// its candidates to be weighed too (`bench floors`, with the other rules: 12,033 s at 3 s,
 /// 12,043 s at 5 s, 11,976 s at 8 s, 12,248 s at 0, 12,404 s at 10 s and 12,811 s at 20 s;
-/// on 16 other offices 12,902 s, 12,918 s and 12,980 s at 3, 5 and 8 s).
+/// on the 16 generated offices of the module docs 12,902 s, 12,918 s and 12,980 s at 3, 5 and
+/// 8 s).
 const HORIZON: f64 = 5.0;
 
 /// Rays per revolution of the predicted gain.

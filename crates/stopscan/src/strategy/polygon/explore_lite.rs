@@ -168,6 +168,10 @@ pub enum InvalidExploreLiteParams {
 ///   its edge is no frontier.
 ///
 /// Its whole state is serialisable.
+///
+/// [`BoundaryPiece::Edge`]: crate::algorithm::visibility::BoundaryPiece::Edge
+/// [`BoundaryPiece::Partial`]: crate::algorithm::visibility::BoundaryPiece::Partial
+/// [`BoundaryPiece::Wall`]: crate::algorithm::visibility::BoundaryPiece::Wall
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 pub struct ExploreLite {
     params: ExploreLiteParams,
