@@ -331,3 +331,39 @@ fn space_bounded_only_by_windows_out_of_reach_is_still_visited() {
     // nearest-frontier run left 1.5% of what the reachable region sees unseen there).
     every_strategy_covers(&office(4, 10, 106).unwrap(), 0.4, "office 106");
 }
+
+/// `cost_aware` drives between its scans along the shortest ways through what it has seen
+/// (Dijkstra's algorithm over the safe cells of its raster of the views), not along the
+/// tree of moves between viewpoints: over three office floors its path is within 12% of
+/// the shortest paths between its consecutive scans in the true configuration space
+/// (computed here by the exact reflex-vertex visibility graph). Along the tree of moves,
+/// with its corners cut inside single views' regions, it was 15% longer (578 m against
+/// 501 m; now 487 m against 449 m).
+#[test]
+fn cost_aware_drives_nearly_the_shortest_ways_between_its_scans() {
+    use stopscan::algorithm::shortest_path::PathPlanner;
+    let s = RobotSetup {
+        cost: CostModel { scan_time: 30.0, move_time: 0.0, speed: 0.5 },
+        sensor: Sensor { range: Some(20.0), ..setup(0.2).sensor },
+        ..setup(0.2)
+    };
+    let (mut driven, mut shortest) = (0.0, 0.0);
+    for seed in [2u64, 4, 9] {
+        let rooms = 2 + (seed * 7 % 5) as usize;
+        let inst = office(rooms, (seed * 13 % (3 * rooms as u64)) as usize, seed).unwrap();
+        let world =
+            PolygonWorld::with_robot(inst.domain.clone(), Some(20.0), &s.footprint, None).unwrap();
+        let start = world.reach().unwrap().start();
+        let mut strategy = build_for("cost_aware", &s).unwrap();
+        let r = run(&world, start, &s.cost, strategy.as_mut(), &mut NoObserver).unwrap();
+        let c = clearance_of(&r.path, &inst.domain);
+        assert!(c >= 0.2 * (1.0 - 1e-9), "office {seed}: clearance {c}");
+        driven +=
+            r.path.windows(2).map(|w| (w[1][0] - w[0][0]).hypot(w[1][1] - w[0][1])).sum::<f64>();
+        let planner = PathPlanner::new(world.moves());
+        for w in r.scans.windows(2) {
+            shortest += planner.shortest_path(w[0].at, w[1].at).unwrap().length;
+        }
+    }
+    assert!(driven <= 1.12 * shortest, "driven {driven:.1} m, shortest {shortest:.1} m");
+}

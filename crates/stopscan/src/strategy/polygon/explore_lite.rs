@@ -6,7 +6,6 @@ use std::collections::{BTreeSet, VecDeque};
 
 use serde::{Deserialize, Serialize};
 
-use super::known::{keeps_clear, keeps_clear_leaving, reaches};
 use super::trip::{Next, Trip};
 use super::{PolygonFeedback, PolygonStrategy};
 use crate::kernel::{Point, magnitude};
@@ -14,19 +13,12 @@ use crate::protocol::Action;
 use crate::protocol::polygon::{Footprint, PolygonObservation, RobotSetup};
 
 pub use super::raster::MAX_SIDE_CELLS;
-use super::raster::{FREE, NEIGHBOURS, Raster, SAFE, STATE, UNKNOWN};
+use super::raster::{DIAGONAL, Entry, FREE, Raster, STATE, STEP, UNKNOWN};
 
 /// explore_lite's blacklist tolerance: a goal within this many cells of a blacklisted point,
 /// in both coordinates, is blacklisted too (`Explore::goalOnBlacklist`).
 pub const BLACKLIST_TOLERANCE_CELLS: f64 = 5.0;
 
-/// How far (cells, Chebyshev) from its own cell the robot looks for a safe cell to drive to
-/// straight when its own cell is not safe.
-const MAX_ENTRY_CELLS: i64 = 64;
-
-/// A* cost of an orthogonal step (a diagonal one costs [`DIAGONAL`]).
-const STEP: u64 = 1000;
-const DIAGONAL: u64 = 1414;
 /// explore_lite's parameters, and the raster's resolution.
 #[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
 pub struct ExploreLiteParams {
@@ -356,50 +348,11 @@ impl ExploreLite {
         Action::Done
     }
 
-    /// The cells a trip from `at` may start with, and how: the robot's own cell when it is
-    /// safe and the move to its centre stays in safe cells; otherwise the safe cells nearby
-    /// that a straight move through the last scan's region reaches with the clearance.
+    /// The cells a trip from `at` may start with ([`Raster::entries`]): the last scan's
+    /// region is the one the robot stands in.
     fn entries(&self, at: Point) -> Vec<Entry> {
-        let r = &self.raster;
-        let own = r.cell_of(at);
-        if let Some(i) = r.local(own)
-            && r.cells[i] & SAFE != 0
-            && r.segment_is_safe(at, r.centre(own))
-        {
-            return vec![Entry { cell: i, cost: r.step_cost(at, r.centre(own)), direct: false }];
-        }
-        let Some(view) = self.last.as_ref().filter(|v| v.at == at) else { return Vec::new() };
-        let c = self.clearance();
-        // The box around the robot's cell grows until it holds a safe cell the robot can
-        // drive to straight (a start in a corner or a narrow spike may be far from one).
-        let mut reach = self.inflation() + 3;
-        loop {
-            let mut out = Vec::new();
-            for y in own[1] - reach..=own[1] + reach {
-                for x in own[0] - reach..=own[0] + reach {
-                    let Some(i) = r.local([x, y]) else { continue };
-                    if r.cells[i] & SAFE == 0 {
-                        continue;
-                    }
-                    let q = r.centre([x, y]);
-                    if q != at
-                        && reaches(&view.polygon, at, q)
-                        && (c == 0.0
-                            || if self.relaxed {
-                                keeps_clear_leaving(&view.polygon, at, q, c)
-                            } else {
-                                keeps_clear(&view.polygon, at, q, c)
-                            })
-                    {
-                        out.push(Entry { cell: i, cost: r.step_cost(at, q), direct: true });
-                    }
-                }
-            }
-            if !out.is_empty() || reach >= MAX_ENTRY_CELLS {
-                return out;
-            }
-            reach = (2 * reach).min(MAX_ENTRY_CELLS);
-        }
+        let view = self.last.as_ref().filter(|v| v.at == at).map(|v| v.polygon.as_slice());
+        self.raster.entries(at, view, self.clearance(), self.inflation(), self.relaxed)
     }
 }
 
@@ -437,15 +390,6 @@ impl PolygonStrategy for ExploreLite {
     }
 }
 
-/// A first step of a trip: from the robot to the cell with this local index.
-#[derive(Debug, Clone, Copy, PartialEq)]
-struct Entry {
-    cell: usize,
-    cost: u64,
-    /// Reached straight through the last scan's region (the robot's cell is not safe).
-    direct: bool,
-}
-
 /// A frontier cluster, as explore_lite's `Frontier`.
 #[derive(Debug, Clone, PartialEq)]
 struct Frontier {
@@ -462,11 +406,6 @@ struct Frontier {
 }
 
 impl Raster {
-    /// The A* cost of a straight step.
-    fn step_cost(&self, a: Point, b: Point) -> u64 {
-        ((b[0] - a[0]).hypot(b[1] - a[1]) / self.res * STEP as f64).round() as u64
-    }
-
     /// explore_lite's frontier search from the robot at `at`: the clusters of at least
     /// `min_frontier_size`, cheapest first (ties in the order found).
     fn frontiers(&self, at: Point, params: &ExploreLiteParams) -> Vec<Frontier> {
@@ -552,46 +491,6 @@ impl Raster {
         out
     }
 
-    /// The safe 8-neighbours of a local index a move may step to (a diagonal only when both
-    /// orthogonal cells are safe), with the step's cost. Safe cells are free, so they keep
-    /// [`MARGIN`] from the box's edge and their neighbours are indexed unchecked.
-    fn safe_steps(&self, i: usize) -> impl Iterator<Item = (usize, u64)> + '_ {
-        let w = self.size[0] as isize;
-        let safe = move |o: isize| self.cells[i.wrapping_add_signed(o)] & SAFE != 0;
-        NEIGHBOURS.into_iter().zip(self.offsets()).filter_map(move |([dx, dy], o)| {
-            if !safe(o) {
-                return None;
-            }
-            if dx != 0 && dy != 0 {
-                (safe(dx as isize) && safe(dy as isize * w))
-                    .then_some((i.wrapping_add_signed(o), DIAGONAL))
-            } else {
-                Some((i.wrapping_add_signed(o), STEP))
-            }
-        })
-    }
-
-    /// The safe cells reachable from the entries.
-    fn reachable(&self, entries: &[Entry]) -> Vec<bool> {
-        let mut reach = vec![false; self.cells.len()];
-        let mut q: VecDeque<usize> = VecDeque::new();
-        for e in entries {
-            if !reach[e.cell] {
-                reach[e.cell] = true;
-                q.push_back(e.cell);
-            }
-        }
-        while let Some(i) = q.pop_front() {
-            for (j, _) in self.safe_steps(i) {
-                if !reach[j] {
-                    reach[j] = true;
-                    q.push_back(j);
-                }
-            }
-        }
-        reach
-    }
-
     /// The goal for a frontier: the reachable cell nearest to its centroid through space seen
     /// free. From the centroid's cell when it is free; otherwise the way enters free space
     /// through one of the frontier's own cells, and its length counts from the centroid to
@@ -675,75 +574,11 @@ impl Raster {
         }
         best.map(|b| b.1)
     }
-
-    /// A* over safe cells from the robot (through its entries) to the cell `goal`: the cell
-    /// path, entry first.
-    fn astar(&self, entries: &[Entry], goal: usize) -> Option<Vec<usize>> {
-        const ROBOT: usize = usize::MAX;
-        let w = self.size[0];
-        let (gx, gy) = ((goal % w) as i64, (goal / w) as i64);
-        let h = |&i: &usize| -> u64 {
-            if i == ROBOT {
-                return 0;
-            }
-            let (dx, dy) =
-                (((i % w) as i64 - gx).unsigned_abs(), ((i / w) as i64 - gy).unsigned_abs());
-            let (lo, hi) = (dx.min(dy), dx.max(dy));
-            STEP * hi + (DIAGONAL - STEP) * lo
-        };
-        let (path, _) = pathfinding::directed::astar::astar(
-            &ROBOT,
-            |&i: &usize| -> Vec<(usize, u64)> {
-                if i == ROBOT {
-                    entries.iter().map(|e| (e.cell, e.cost)).collect()
-                } else {
-                    self.safe_steps(i).collect()
-                }
-            },
-            h,
-            |&i| i == goal,
-        )?;
-        Some(path.into_iter().skip(1).collect())
-    }
-
-    /// Straight moves along a cell path from the robot at `at`: the first to the path's first
-    /// cell when the entry goes there straight through the last scan's region; then from the
-    /// anchor (the robot, or the last waypoint) to the farthest cell of the path, extending one
-    /// cell at a time while every cell the move's supercover touches is safe. The last
-    /// waypoint is the centre of the path's last cell. `None` if a move cannot be extended at
-    /// all (never for a path of safe neighbours).
-    fn compress(&self, at: Point, entries: &[Entry], path: &[usize]) -> Option<Vec<Point>> {
-        let centre = |i: usize| self.centre(self.global(i));
-        let first = *path.first()?;
-        let mut out = Vec::new();
-        let (mut anchor, mut next) = if entries.iter().any(|e| e.cell == first && e.direct) {
-            out.push(centre(first));
-            (centre(first), 1)
-        } else if at == centre(first) {
-            (at, 1)
-        } else {
-            (at, 0)
-        };
-        while next < path.len() {
-            let mut best = None;
-            for (j, &c) in path.iter().enumerate().skip(next) {
-                if !self.segment_is_safe(anchor, centre(c)) {
-                    break;
-                }
-                best = Some(j);
-            }
-            let j = best?;
-            anchor = centre(path[j]);
-            out.push(anchor);
-            next = j + 1;
-        }
-        Some(out)
-    }
 }
 
 #[cfg(test)]
 mod tests {
-    use super::super::raster::{MARGIN, OCCUPIED, supercover};
+    use super::super::raster::{MARGIN, OCCUPIED, SAFE, supercover};
     use super::*;
     use crate::algorithm::visibility::BoundaryPiece;
     use crate::algorithm::visibility::VisibilityRegion;
@@ -1050,6 +885,65 @@ mod tests {
         let rows: Vec<String> = grid.iter().rev().map(|r| r.iter().collect()).collect();
         let refs: Vec<&str> = rows.iter().map(String::as_str).collect();
         raster_from(0.05, &refs, k)
+    }
+
+    #[test]
+    fn distances_are_those_of_the_cheapest_paths_through_safe_cells() {
+        // Against a brute force from the definition: relax every safe cell's steps (4
+        // orthogonal ones of 1000, 4 diagonal ones of 1414 allowed only when both orthogonal
+        // cells are safe) until nothing changes.
+        for seed in 0..6 {
+            for k in [0, 1, 2] {
+                let r = random_raster(seed, k);
+                let safe = |x: i64, y: i64| r.is_safe([x, y]);
+                let Some(s) = (0..r.cells.len()).find(|&i| r.cells[i] & SAFE != 0) else {
+                    continue;
+                };
+                let entries = [Entry { cell: s, cost: 7, direct: false }];
+                let got = r.distances(&entries);
+                let mut want = vec![u64::MAX; r.cells.len()];
+                want[s] = 7;
+                let mut changed = true;
+                while changed {
+                    changed = false;
+                    for i in 0..r.cells.len() {
+                        if want[i] == u64::MAX {
+                            continue;
+                        }
+                        let [x, y] = r.global(i);
+                        for dx in -1i64..=1 {
+                            for dy in -1i64..=1 {
+                                if (dx, dy) == (0, 0) || !safe(x + dx, y + dy) {
+                                    continue;
+                                }
+                                let diagonal = dx != 0 && dy != 0;
+                                if diagonal && !(safe(x + dx, y) && safe(x, y + dy)) {
+                                    continue;
+                                }
+                                let j = r.local([x + dx, y + dy]).unwrap();
+                                let c = want[i] + if diagonal { 1414 } else { 1000 };
+                                if c < want[j] {
+                                    want[j] = c;
+                                    changed = true;
+                                }
+                            }
+                        }
+                    }
+                }
+                assert_eq!(got, want, "seed {seed} k {k}");
+                // A* finds paths of the same cost.
+                let goal = (0..r.cells.len()).rev().find(|&i| want[i] != u64::MAX).unwrap();
+                let path = r.astar(&entries, goal).unwrap();
+                let cost: u64 = 7 + path
+                    .windows(2)
+                    .map(|w| {
+                        let (a, b) = (r.global(w[0]), r.global(w[1]));
+                        if a[0] != b[0] && a[1] != b[1] { 1414 } else { 1000 }
+                    })
+                    .sum::<u64>();
+                assert_eq!(cost, want[goal], "seed {seed} k {k}");
+            }
+        }
     }
 
     #[test]

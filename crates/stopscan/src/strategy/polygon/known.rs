@@ -322,12 +322,12 @@ impl Known {
 
     /// Whether the robot may stand nearer a wall than its clearance (raw scans: the sensor
     /// rule tolerates walls placed apart by noise), so that moves out of there are relaxed.
-    fn relaxed(&self) -> bool {
+    pub(super) fn relaxed(&self) -> bool {
         self.sensor.wall_tolerance > 0.0
     }
 
     /// The clearance planned moves keep near view `v` (0 for a point robot).
-    fn clearance(&self, v: usize) -> f64 {
+    pub(super) fn clearance(&self, v: usize) -> f64 {
         self.footprint.planning_clearance(magnitude(&self.views[v].polygon))
     }
 
@@ -355,7 +355,7 @@ impl Known {
     }
 
     /// Brings the union of the views' regions and its holes up to date with the views.
-    fn update_seen(&mut self) {
+    pub(super) fn update_seen(&mut self) {
         let n = self.views.len();
         if self.seen.views < n {
             let new: Vec<Vec<Point>> =
@@ -1139,6 +1139,28 @@ impl Known {
         self.next_move()
     }
 
+    /// Drives through `waypoints` (ending at the target's viewpoint), then scans: a route
+    /// planned elsewhere (through safe cells of a raster of the views). The target keeps its
+    /// own `via`, so the tree of moves stays as if the robot had come from its base.
+    pub(super) fn go_along(&mut self, mut waypoints: Vec<Point>, target: Target) -> Action<Point> {
+        waypoints.reverse();
+        self.trip.set_route(waypoints);
+        self.pending = Some(target);
+        self.next_move()
+    }
+
+    /// Whether the straight move from `a` to `b` keeps the clearance `c` from the boundary of
+    /// the union of the views' regions (seen free space, walls and frontiers alike), inside
+    /// the part of it that holds `a`. The union must be up to date
+    /// ([`update_seen`](Self::update_seen)).
+    pub(super) fn clear_in_seen(&self, a: Point, b: Point, c: f64) -> bool {
+        self.seen.union.shapes.iter().any(|shape| {
+            shape.first().is_some_and(|o| ring_side(o, a) == RingSide::Inside)
+                && shape[1..].iter().all(|h| ring_side(h, a) == RingSide::Outside)
+                && shape.iter().all(|r| keeps_clear(r, a, b, c))
+        })
+    }
+
     /// Whether the straight move from `a` to `b` lies inside view `w`'s region, `a` inside it
     /// or its viewpoint, keeping the footprint's clearance from its boundary.
     fn straight_in(&self, w: usize, a: Point, b: Point) -> bool {
@@ -1316,7 +1338,7 @@ fn sees_across(shape: &[Vec<Point>], z: Point, m: Point) -> bool {
 }
 
 /// The length of the polyline from `from` through `pts`.
-fn path_length(from: Point, pts: &[Point]) -> f64 {
+pub(super) fn path_length(from: Point, pts: &[Point]) -> f64 {
     let mut len = 0.0;
     let mut prev = from;
     for p in pts {

@@ -4,6 +4,9 @@
 
 use serde::{Deserialize, Serialize};
 
+use std::collections::VecDeque;
+
+use super::known::{keeps_clear, keeps_clear_leaving, reaches};
 use crate::algorithm::visibility::BoundaryPiece;
 use crate::kernel::Point;
 
@@ -318,6 +321,228 @@ impl Raster {
             (nx >= 0 && ny >= 0 && (nx as usize) < w && (ny as usize) < h)
                 .then(|| ny as usize * w + nx as usize)
         })
+    }
+}
+
+/// How far (cells, Chebyshev) from its own cell the robot looks for a safe cell to drive to
+/// straight when its own cell is not safe.
+const MAX_ENTRY_CELLS: i64 = 64;
+
+/// Path cost of an orthogonal step (a diagonal one costs [`DIAGONAL`]): a cell's side is
+/// `STEP` units.
+pub(super) const STEP: u64 = 1000;
+/// Path cost of a diagonal step.
+pub(super) const DIAGONAL: u64 = 1414;
+
+/// A first step of a trip: from the robot to the cell with this local index.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub(super) struct Entry {
+    pub(super) cell: usize,
+    pub(super) cost: u64,
+    /// Reached straight through the robot's region (the robot's cell is not safe).
+    pub(super) direct: bool,
+}
+
+/// Paths through safe cells: every cell a move's supercover touches is safe, so the robot's
+/// footprint stays in cells seen free.
+impl Raster {
+    /// The A* cost of a straight step.
+    pub(super) fn step_cost(&self, a: Point, b: Point) -> u64 {
+        ((b[0] - a[0]).hypot(b[1] - a[1]) / self.res * STEP as f64).round() as u64
+    }
+
+    /// The safe 8-neighbours of a local index a move may step to (a diagonal only when both
+    /// orthogonal cells are safe), with the step's cost. Safe cells are free, so they keep
+    /// [`MARGIN`] from the box's edge and their neighbours are indexed unchecked.
+    pub(super) fn safe_steps(&self, i: usize) -> impl Iterator<Item = (usize, u64)> + '_ {
+        let w = self.size[0] as isize;
+        let safe = move |o: isize| self.cells[i.wrapping_add_signed(o)] & SAFE != 0;
+        NEIGHBOURS.into_iter().zip(self.offsets()).filter_map(move |([dx, dy], o)| {
+            if !safe(o) {
+                return None;
+            }
+            if dx != 0 && dy != 0 {
+                (safe(dx as isize) && safe(dy as isize * w))
+                    .then_some((i.wrapping_add_signed(o), DIAGONAL))
+            } else {
+                Some((i.wrapping_add_signed(o), STEP))
+            }
+        })
+    }
+
+    /// The safe cells reachable from the entries.
+    pub(super) fn reachable(&self, entries: &[Entry]) -> Vec<bool> {
+        let mut reach = vec![false; self.cells.len()];
+        let mut q: VecDeque<usize> = VecDeque::new();
+        for e in entries {
+            if !reach[e.cell] {
+                reach[e.cell] = true;
+                q.push_back(e.cell);
+            }
+        }
+        while let Some(i) = q.pop_front() {
+            for (j, _) in self.safe_steps(i) {
+                if !reach[j] {
+                    reach[j] = true;
+                    q.push_back(j);
+                }
+            }
+        }
+        reach
+    }
+
+    /// The cells a trip from `at` may start with, and how: the robot's own cell when it is
+    /// safe and the move to its centre stays in safe cells; otherwise the safe cells nearby
+    /// that a straight move through `view` (the region the robot stands in) reaches with the
+    /// clearance `c` (`relaxed`: the robot may stand nearer a wall than `c`, and the move
+    /// keeps 99% of what it has, [`keeps_clear_leaving`]). `k` is the inflation, cells.
+    pub(super) fn entries(
+        &self,
+        at: Point,
+        view: Option<&[Point]>,
+        c: f64,
+        k: i64,
+        relaxed: bool,
+    ) -> Vec<Entry> {
+        let own = self.cell_of(at);
+        if let Some(i) = self.local(own)
+            && self.cells[i] & SAFE != 0
+            && self.segment_is_safe(at, self.centre(own))
+        {
+            return vec![Entry {
+                cell: i,
+                cost: self.step_cost(at, self.centre(own)),
+                direct: false,
+            }];
+        }
+        let Some(polygon) = view else { return Vec::new() };
+        // The box around the robot's cell grows until it holds a safe cell the robot can
+        // drive to straight (a start in a corner or a narrow spike may be far from one).
+        let mut reach = k + 3;
+        loop {
+            let mut out = Vec::new();
+            for y in own[1] - reach..=own[1] + reach {
+                for x in own[0] - reach..=own[0] + reach {
+                    let Some(i) = self.local([x, y]) else { continue };
+                    if self.cells[i] & SAFE == 0 {
+                        continue;
+                    }
+                    let q = self.centre([x, y]);
+                    if q != at
+                        && reaches(polygon, at, q)
+                        && (c == 0.0
+                            || if relaxed {
+                                keeps_clear_leaving(polygon, at, q, c)
+                            } else {
+                                keeps_clear(polygon, at, q, c)
+                            })
+                    {
+                        out.push(Entry { cell: i, cost: self.step_cost(at, q), direct: true });
+                    }
+                }
+            }
+            if !out.is_empty() || reach >= MAX_ENTRY_CELLS {
+                return out;
+            }
+            reach = (2 * reach).min(MAX_ENTRY_CELLS);
+        }
+    }
+
+    /// The cost of the cheapest path through safe cells from the robot (through its entries)
+    /// to every cell, in [`STEP`]s per cell side; `u64::MAX` where none leads (Dijkstra's
+    /// algorithm over the whole raster).
+    pub(super) fn distances(&self, entries: &[Entry]) -> Vec<u64> {
+        use std::cmp::Reverse;
+        let mut dist = vec![u64::MAX; self.cells.len()];
+        let mut heap = std::collections::BinaryHeap::new();
+        for e in entries {
+            if e.cost < dist[e.cell] {
+                dist[e.cell] = e.cost;
+                heap.push(Reverse((e.cost, e.cell)));
+            }
+        }
+        while let Some(Reverse((d, i))) = heap.pop() {
+            if d > dist[i] {
+                continue;
+            }
+            for (j, step) in self.safe_steps(i) {
+                let nd = d + step;
+                if nd < dist[j] {
+                    dist[j] = nd;
+                    heap.push(Reverse((nd, j)));
+                }
+            }
+        }
+        dist
+    }
+
+    /// A* over safe cells from the robot (through its entries) to the cell `goal`: the cell
+    /// path, entry first.
+    pub(super) fn astar(&self, entries: &[Entry], goal: usize) -> Option<Vec<usize>> {
+        const ROBOT: usize = usize::MAX;
+        let w = self.size[0];
+        let (gx, gy) = ((goal % w) as i64, (goal / w) as i64);
+        let h = |&i: &usize| -> u64 {
+            if i == ROBOT {
+                return 0;
+            }
+            let (dx, dy) =
+                (((i % w) as i64 - gx).unsigned_abs(), ((i / w) as i64 - gy).unsigned_abs());
+            let (lo, hi) = (dx.min(dy), dx.max(dy));
+            STEP * hi + (DIAGONAL - STEP) * lo
+        };
+        let (path, _) = pathfinding::directed::astar::astar(
+            &ROBOT,
+            |&i: &usize| -> Vec<(usize, u64)> {
+                if i == ROBOT {
+                    entries.iter().map(|e| (e.cell, e.cost)).collect()
+                } else {
+                    self.safe_steps(i).collect()
+                }
+            },
+            h,
+            |&i| i == goal,
+        )?;
+        Some(path.into_iter().skip(1).collect())
+    }
+
+    /// Straight moves along a cell path from the robot at `at`: the first to the path's first
+    /// cell when the entry goes there straight through the last scan's region; then from the
+    /// anchor (the robot, or the last waypoint) to the farthest cell of the path, extending one
+    /// cell at a time while every cell the move's supercover touches is safe. The last
+    /// waypoint is the centre of the path's last cell. `None` if a move cannot be extended at
+    /// all (never for a path of safe neighbours).
+    pub(super) fn compress(
+        &self,
+        at: Point,
+        entries: &[Entry],
+        path: &[usize],
+    ) -> Option<Vec<Point>> {
+        let centre = |i: usize| self.centre(self.global(i));
+        let first = *path.first()?;
+        let mut out = Vec::new();
+        let (mut anchor, mut next) = if entries.iter().any(|e| e.cell == first && e.direct) {
+            out.push(centre(first));
+            (centre(first), 1)
+        } else if at == centre(first) {
+            (at, 1)
+        } else {
+            (at, 0)
+        };
+        while next < path.len() {
+            let mut best = None;
+            for (j, &c) in path.iter().enumerate().skip(next) {
+                if !self.segment_is_safe(anchor, centre(c)) {
+                    break;
+                }
+                best = Some(j);
+            }
+            let j = best?;
+            anchor = centre(path[j]);
+            out.push(anchor);
+            next = j + 1;
+        }
+        Some(out)
     }
 }
 
