@@ -14,8 +14,6 @@
 //! odometry put it, and the result says so. A result with too few pairs, a large residual or
 //! an implausible correction is rejected as a whole: odometry is kept.
 
-use std::collections::HashMap;
-
 use crate::geometry::segment_distance;
 use crate::kernel::Point;
 use crate::protocol::laser::{Pose, wrap};
@@ -111,7 +109,7 @@ pub enum Fallback {
 #[derive(Debug, Clone, Default)]
 pub struct WallMap {
     segments: Vec<[Point; 2]>,
-    cells: HashMap<(i64, i64), Vec<u32>>,
+    cells: rustc_hash::FxHashMap<(i64, i64), Vec<u32>>,
 }
 
 /// The wall map's cell side, metres.
