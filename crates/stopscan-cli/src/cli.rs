@@ -433,7 +433,11 @@ pub(crate) struct ExploreArgs {
     pub(crate) min_pocket: Option<f64>,
     /// The largest pocket --min-pocket may leave unvisited, square metres (keeps a small room
     /// in a large building a room).
-    #[arg(long, allow_negative_numbers = true, default_value_t = 2.0)]
+    #[arg(
+        long,
+        allow_negative_numbers = true,
+        default_value_t = stopscan::pipeline::explore::DEFAULT_POCKET_CAP
+    )]
     pub(crate) pocket_cap: f64,
     /// Compute the offline greedy reference for domains up to this many vertices.
     #[arg(long, default_value_t = 1000, allow_negative_numbers = true, value_parser = count_at_least(0))]
