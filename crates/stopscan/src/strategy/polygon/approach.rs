@@ -36,6 +36,14 @@ pub(super) struct Path {
     pub(super) goal: usize,
 }
 
+/// Whether `p` lies strictly inside the region with outer ring `rings[0]` and holes
+/// `rings[1..]`.
+pub(super) fn holds<R: AsRef<[Point]>>(rings: &[R], p: Point) -> bool {
+    let Some((outer, holes)) = rings.split_first() else { return false };
+    ring_side(outer.as_ref(), p) == RingSide::Inside
+        && holes.iter().all(|h| ring_side(h.as_ref(), p) == RingSide::Outside)
+}
+
 impl<'a> Approach<'a> {
     /// Paths inside `polygon` (a view's region, counter-clockwise) keeping `c > 0` from its
     /// boundary.
@@ -58,10 +66,7 @@ impl<'a> Approach<'a> {
 
     /// Whether `p` lies inside the region with the clearance around it.
     pub(super) fn clear_point(&self, p: Point) -> bool {
-        let Some((outer, holes)) = self.rings.split_first() else { return false };
-        ring_side(outer, p) == RingSide::Inside
-            && holes.iter().all(|h| ring_side(h, p) == RingSide::Outside)
-            && self.clear(p, p)
+        holds(&self.rings, p) && self.clear(p, p)
     }
 
     /// Points stepped off the region's reflex vertices into it (along each vertex's interior

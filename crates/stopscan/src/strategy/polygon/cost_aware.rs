@@ -330,24 +330,33 @@ impl CostAware {
     /// The safe cells near `z` the roads reach, with the length of the way to `z` through
     /// each (the road to the cell's centre, then straight on), shortest first.
     fn road_ends(&self, roads: &Roads, z: Point) -> Vec<(f64, usize)> {
-        let Some(raster) = &self.seen.raster else { return Vec::new() };
-        let zc = raster.cell_of(z);
-        let r = self.seen.k + 3;
-        let mut out = Vec::new();
-        for y in zc[1] - r..=zc[1] + r {
-            for x in zc[0] - r..=zc[0] + r {
-                let Some(i) = raster.local([x, y]) else { continue };
-                if roads.dist[i] == u64::MAX {
-                    continue;
-                }
-                let q = raster.centre([x, y]);
-                let d = roads.dist[i] as f64 * raster.res / STEP as f64
-                    + (q[0] - z[0]).hypot(q[1] - z[1]);
-                out.push((d, i));
-            }
-        }
+        let mut out: Vec<(f64, usize)> = self.ends_near(roads, z).collect();
         out.sort_by(|a, b| a.0.total_cmp(&b.0).then(a.1.cmp(&b.1)));
         out
+    }
+
+    /// The safe cells within `k + 3` cells of `z` the roads reach, with the length of the way
+    /// to `z` through each, in no particular order.
+    fn ends_near<'a>(
+        &'a self,
+        roads: &'a Roads,
+        z: Point,
+    ) -> impl Iterator<Item = (f64, usize)> + 'a {
+        let raster = self.seen.raster.as_ref();
+        let r = self.seen.k + 3;
+        let zc = raster.map_or([0, 0], |ra| ra.cell_of(z));
+        raster.into_iter().flat_map(move |ra| {
+            (zc[1] - r..=zc[1] + r).flat_map(move |y| {
+                (zc[0] - r..=zc[0] + r).filter_map(move |x| {
+                    let i = ra.local([x, y])?;
+                    let d = roads.dist[i];
+                    (d != u64::MAX).then(|| {
+                        let q = ra.centre([x, y]);
+                        (d as f64 * ra.res / STEP as f64 + (q[0] - z[0]).hypot(q[1] - z[1]), i)
+                    })
+                })
+            })
+        })
     }
 
     /// Fewer waypoints: from the robot and then from each waypoint kept, straight on to the
@@ -372,7 +381,7 @@ impl CostAware {
 
     /// The length of the way to `z` along the roads, if they come near it.
     fn road_length(&self, roads: &Roads, z: Point) -> Option<f64> {
-        self.road_ends(roads, z).first().map(|e| e.0)
+        self.ends_near(roads, z).map(|e| e.0).min_by(f64::total_cmp)
     }
 
     /// The waypoints of a route to `z` along the roads, ending at `z`: through safe cells to

@@ -15,7 +15,7 @@ use crate::protocol::Action;
 use crate::protocol::polygon::{Footprint, PolygonObservation, RobotSetup, Sensor};
 
 use super::PolygonFeedback;
-use super::approach::Approach;
+use super::approach::{Approach, holds};
 use super::trip::{Next, Trip};
 
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
@@ -444,10 +444,7 @@ impl Known {
             [lo[0] - margin, hi[1] + margin],
         ]);
         let local = self.seen.union.intersection(&boxed);
-        let shape = local.shapes.iter().find(|s| {
-            s.first().is_some_and(|o| ring_side(o, at) == RingSide::Inside)
-                && s[1..].iter().all(|h| ring_side(h, at) == RingSide::Outside)
-        })?;
+        let shape = local.shapes.iter().find(|s| holds(s, at))?;
         // Or a corner of the union from where the part is seen across it: in front of a door
         // too steep and narrow to pass, the robot looks through it.
         let beside: Vec<Point> = beside
@@ -1154,11 +1151,11 @@ impl Known {
     /// the part of it that holds `a`. The union must be up to date
     /// ([`update_seen`](Self::update_seen)).
     pub(super) fn clear_in_seen(&self, a: Point, b: Point, c: f64) -> bool {
-        self.seen.union.shapes.iter().any(|shape| {
-            shape.first().is_some_and(|o| ring_side(o, a) == RingSide::Inside)
-                && shape[1..].iter().all(|h| ring_side(h, a) == RingSide::Outside)
-                && shape.iter().all(|r| keeps_clear(r, a, b, c))
-        })
+        self.seen
+            .union
+            .shapes
+            .iter()
+            .any(|shape| holds(shape, a) && Approach::with_holes(shape, c).clear(a, b))
     }
 
     /// Whether the straight move from `a` to `b` lies inside view `w`'s region, `a` inside it
