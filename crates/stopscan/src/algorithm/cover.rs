@@ -11,7 +11,7 @@
 //! middle, or, where the piece runs along a polygon edge, by the side the polygon lies on.
 
 use crate::algorithm::visibility::{BoundaryPiece, VisibilityRegion};
-use crate::geometry::signed_area_of;
+use crate::geometry::{segment_distance, signed_area_of};
 use crate::kernel::{Point, RingSide, magnitude, orient_sign, ring_side, rounding};
 
 /// Parameter intervals `[t0, t1] ⊂ [0, 1]`, sorted and disjoint.
@@ -342,10 +342,14 @@ fn for_each_window(regions: &[VisibilityRegion], mut f: impl FnMut(Point, Point,
 ///
 /// `domain ∖ ∪ seen` is computed by i_overlay, whose integer grid (31 bits over the extent)
 /// leaves slivers along boundaries that in exact arithmetic coincide: on a complete run they
-/// add up to about 1e-9 of the area. Each piece of the difference is therefore probed: a
-/// point strictly inside it is tested exactly against the domain and every polygon, and only
-/// pieces whose probe lies in the free space and outside every polygon are counted. A complete
-/// run measures 0; a real gap measures its area, to the overlay's precision.
+/// add up to about 1e-9 of the area. Each piece of the difference is therefore probed at the
+/// deepest point [`probe`] finds inside it, tested exactly against the domain and every
+/// polygon; only pieces whose probe lies in the free space and outside every polygon are
+/// counted, and a piece with no point deeper than [`MIN_PROBE_DEPTH`] of the extent (a
+/// sliver) is not. A sliver can also hang off a real gap, joined to it in one piece (the
+/// overlay's ring runs out along a scan's edge and back): the deepest point lies in the gap,
+/// not in the sliver, where a probe would be "seen" within the rounding and drop the gap. A
+/// complete run measures 0; a real gap measures its area, to the overlay's precision.
 pub fn uncovered_area(domain: &crate::geometry::Domain, seen: &[Vec<Point>]) -> f64 {
     use crate::algorithm::region::Region;
     let union = Region::union_all(seen);
@@ -373,6 +377,8 @@ pub fn uncovered_area_of(
                 && ring_side(poly, p) != RingSide::Outside
         })
     };
+    let [lo, hi] = bounds_of(&domain.rings()[0]);
+    let min_depth = MIN_PROBE_DEPTH * (hi[0] - lo[0]).hypot(hi[1] - lo[1]);
     let mut total = 0.0;
     for shape in &diff.shapes {
         let Some(outer) = shape.first().filter(|o| o.len() >= 3) else { continue };
@@ -382,7 +388,7 @@ pub fn uncovered_area_of(
             continue;
         }
         // A piece too thin to hold a probe point is not counted.
-        if let Some(p) = probe(shape)
+        if let Some(p) = probe(shape).filter(|&(_, depth)| depth > min_depth).map(|(p, _)| p)
             && domain.locate(p) == Location::Interior
             && !covered(p)
         {
@@ -392,37 +398,66 @@ pub fn uncovered_area_of(
     total
 }
 
-/// The fractions of an edge's length by which [`probe`] steps inward, largest first, until
-/// the point lies inside the shape and outside its holes.
-const PROBE_STEPS: [f64; 4] = [1e-3, 1e-6, 1e-9, 1e-12];
+/// The fractions of an edge's length by which [`probe`] steps inward from its middle.
+const PROBE_STEPS: [f64; 8] = [0.25, 0.1, 0.03, 1e-2, 1e-3, 1e-6, 1e-9, 1e-12];
 
-/// A point strictly inside a shape (outer ring, then holes): next to the middle of one of its
-/// longest outer edges, stepped inward by a small fraction of the edge's length.
-fn probe(shape: &[Vec<Point>]) -> Option<Point> {
-    let outer = &shape[0];
-    let n = outer.len();
-    let left = signed_area_of(outer) > 0.0;
-    let mut edges: Vec<usize> = (0..n).collect();
-    let len = |i: usize| {
-        let (a, b) = (outer[i], outer[(i + 1) % n]);
-        (b[0] - a[0]).hypot(b[1] - a[1])
+/// How many of a shape's longest edges (of all its rings) [`probe`] steps in from.
+const PROBE_EDGES: usize = 64;
+
+/// A piece of the difference counts only when a probe point lies deeper inside it than this
+/// share of the domain's extent (its bounding box's diagonal): 1e-7, some 200 times the
+/// overlay's grid step (2⁻³¹ of the extent).
+const MIN_PROBE_DEPTH: f64 = 1e-7;
+
+/// The deepest point strictly inside a shape (outer ring, then holes) among the middles of its
+/// [`PROBE_EDGES`] longest edges stepped inward by each of [`PROBE_STEPS`] of the edge's
+/// length, with its distance from the shape's boundary; `None` if none lies inside.
+fn probe(shape: &[Vec<Point>]) -> Option<(Point, f64)> {
+    let inside = |p: Point| {
+        ring_side(&shape[0], p) == RingSide::Inside
+            && shape[1..].iter().all(|h| ring_side(h, p) == RingSide::Outside)
     };
-    edges.sort_by(|&i, &j| len(j).total_cmp(&len(i)));
-    for &i in edges.iter().take(8) {
-        let (a, b) = (outer[i], outer[(i + 1) % n]);
+    let depth = |p: Point| {
+        shape
+            .iter()
+            .flat_map(|r| {
+                (0..r.len()).map(move |i| segment_distance(p, r[i], r[(i + 1) % r.len()]))
+            })
+            .fold(f64::INFINITY, f64::min)
+    };
+    // Every edge with the ring's inward side: left of a counter-clockwise outer ring, right of
+    // a clockwise one, and the other way round for holes.
+    let mut edges: Vec<(f64, Point, Point, bool)> = shape
+        .iter()
+        .enumerate()
+        .flat_map(|(k, r)| {
+            let left = (signed_area_of(r) > 0.0) == (k == 0);
+            (0..r.len()).map(move |i| {
+                let (a, b) = (r[i], r[(i + 1) % r.len()]);
+                ((b[0] - a[0]).hypot(b[1] - a[1]), a, b, left)
+            })
+        })
+        .collect();
+    edges.sort_by(|x, y| y.0.total_cmp(&x.0));
+    edges.truncate(PROBE_EDGES);
+    let mut best: Option<(Point, f64)> = None;
+    for (_, a, b, left) in edges {
         let (dx, dy) = (b[0] - a[0], b[1] - a[1]);
         let m = [0.5 * (a[0] + b[0]), 0.5 * (a[1] + b[1])];
         for e in PROBE_STEPS {
             let s = if left { e } else { -e };
             let p = [m[0] - s * dy, m[1] + s * dx];
-            if ring_side(outer, p) == RingSide::Inside
-                && shape[1..].iter().all(|h| ring_side(h, p) == RingSide::Outside)
-            {
-                return Some(p);
+            if inside(p) {
+                let d = depth(p);
+                if best.is_none_or(|(_, b)| d > b) {
+                    best = Some((p, d));
+                }
+                // A deeper step from this edge was inside: the shallower ones are not deeper.
+                break;
             }
         }
     }
-    None
+    best
 }
 
 /// The bounding box of a point set, `[min, max]`.
