@@ -21,6 +21,18 @@ const MAX_CORNERS: usize = 24;
 /// How far from its reflex vertex each graph point stands, in multiples of the clearance.
 const STEPS: [f64; 2] = [1.25, 2.5];
 
+/// How far from a reflex vertex a graph point also stands, in multiples of the clearance, where
+/// the first of [`STEPS`] along its bisector is not clear.
+const TIGHT_STEP: f64 = 1.05;
+
+/// The turns from a reflex vertex's bisector tried for its graph point, radians, in order:
+/// the bisector, then 15°, 30°, 45°, 60° and 75° to either side. At a reflex vertex the free
+/// wedge spans more than 90° to each side of the bisector, so every turn starts into it.
+const ASIDE: [f64; 11] = {
+    let d = std::f64::consts::PI / 12.0;
+    [0.0, d, -d, 2.0 * d, -2.0 * d, 3.0 * d, -3.0 * d, 4.0 * d, -4.0 * d, 5.0 * d, -5.0 * d]
+};
+
 /// The region (an outer ring, counter-clockwise, and its holes, clockwise: the region lies
 /// left of every ring) and the clearance a path keeps in it.
 pub(super) struct Approach<'a> {
@@ -70,7 +82,9 @@ impl<'a> Approach<'a> {
     }
 
     /// Points stepped off the region's reflex vertices into it (along each vertex's interior
-    /// bisector, by [`STEPS`] times the clearance), from the [`MAX_CORNERS`] vertices nearest
+    /// bisector, or turned from it by [`ASIDE`] where the bisector's point is not clear, by
+    /// [`STEPS`] times the clearance, and by [`TIGHT_STEP`] too where the bisector's first
+    /// point is not clear), from the [`MAX_CORNERS`] vertices nearest
     /// the segment `near`, that keep the clearance themselves. Deterministic: ties keep the
     /// region's vertex order.
     pub(super) fn corners(&self, near: [Point; 2]) -> Vec<Point> {
@@ -109,12 +123,24 @@ impl<'a> Approach<'a> {
             if b == [0.0, 0.0] {
                 continue;
             }
-            for k in STEPS {
-                let z = [q[0] + k * self.c * b[0], q[1] + k * self.c * b[1]];
-                if self.clear_point(z) {
-                    out.push(z);
-                }
-            }
+            // A point `k` clearances from the vertex: along the bisector or, where that comes
+            // too near another wall (a jamb close to the opposite wall), turned from it by
+            // [`ASIDE`], the first that keeps the clearance.
+            let step = |k: f64| {
+                ASIDE
+                    .iter()
+                    .map(|&a: &f64| {
+                        let (s, c) = a.sin_cos();
+                        let d = [c * b[0] - s * b[1], s * b[0] + c * b[1]];
+                        [q[0] + k * self.c * d[0], q[1] + k * self.c * d[1]]
+                    })
+                    .find(|&z| self.clear_point(z))
+            };
+            // Beside such a jamb, also a point just beyond the clearance: the nearest the
+            // robot comes to the vertex, from where it looks past it the farthest.
+            let first = [q[0] + STEPS[0] * self.c * b[0], q[1] + STEPS[0] * self.c * b[1]];
+            let tight = (!self.clear_point(first)).then_some(TIGHT_STEP);
+            out.extend(tight.into_iter().chain(STEPS).filter_map(step));
         }
         out
     }
