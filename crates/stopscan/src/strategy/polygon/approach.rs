@@ -289,4 +289,44 @@ mod tests {
         let corners = a.corners([from, goals[1]]);
         assert_eq!(a.path(from, &corners, &goals).map(|p| p.goal), Some(1));
     }
+
+    #[test]
+    fn a_jamb_close_to_the_opposite_wall_still_has_a_graph_point() {
+        // A room (0 ≤ x ≤ 1) and, behind a thin jamb whose tip is at (1, 1.2), a second room
+        // reached through a gap 0.15 m high under the top wall (y = 1.35): too narrow for a
+        // robot keeping 0.1 m. Along the tip's bisector the points 1.25 and 2.5 clearances
+        // out come within 0.1 m of the top wall; turned from it, one is clear, and so is one
+        // just beyond the clearance, from where the robot looks past the tip.
+        let poly = vec![
+            [0.0, 0.0],
+            [1.0, 0.0],
+            [1.0, 1.2],
+            [1.05, 1.2],
+            [1.05, 0.8],
+            [3.0, 0.8],
+            [3.0, 1.35],
+            [0.0, 1.35],
+        ];
+        let c = 0.1;
+        let a = Approach::new(&poly, c);
+        let tip = [1.0, 1.2];
+        let corners = a.corners([[0.5, 0.5], tip]);
+        let near: Vec<Point> = corners
+            .iter()
+            .copied()
+            .filter(|z| (z[0] - tip[0]).hypot(z[1] - tip[1]) <= 1.3 * c)
+            .collect();
+        assert!(!near.is_empty(), "no graph point beside the tip: {corners:?}");
+        for z in &corners {
+            // Clear from the definition: inside, and at least c from every edge.
+            assert!(z[0] > 0.0 && z[0] < 3.0 && z[1] > 0.0 && z[1] < 1.35);
+            let n = poly.len();
+            let d = (0..n)
+                .map(|i| crate::geometry::segment_distance(*z, poly[i], poly[(i + 1) % n]))
+                .fold(f64::INFINITY, f64::min);
+            assert!(d >= c, "{z:?} is {d} from the walls");
+        }
+        // The robot gets there from the room.
+        assert!(a.path([0.5, 0.5], &corners, &near).is_some());
+    }
 }
