@@ -343,10 +343,10 @@ fn for_each_window(regions: &[VisibilityRegion], mut f: impl FnMut(Point, Point,
 /// `domain ∖ ∪ seen` is computed by i_overlay, whose integer grid (31 bits over the extent)
 /// leaves slivers along boundaries that in exact arithmetic coincide: on a complete run they
 /// add up to about 1e-9 of the area. Each piece of the difference is therefore probed at the
-/// deepest point [`probe`] finds inside it, tested exactly against the domain and every
-/// polygon; only pieces whose probe lies in the free space and outside every polygon are
-/// counted, and a piece with no point deeper than [`MIN_PROBE_DEPTH`] of the extent (a
-/// sliver) is not. A sliver can also hang off a real gap, joined to it in one piece (the
+/// deepest of a few points stepped in from the middles of its longest edges, tested exactly
+/// against the domain and every polygon; only pieces whose probe lies in the free space and
+/// outside every polygon are counted, and a piece with no point deeper than 1e-7 of the
+/// domain's extent (a sliver) is not. A sliver can also hang off a real gap, joined to it in one piece (the
 /// overlay's ring runs out along a scan's edge and back): the deepest point lies in the gap,
 /// not in the sliver, where a probe would be "seen" within the rounding and drop the gap. A
 /// complete run measures 0; a real gap measures its area, to the overlay's precision.
