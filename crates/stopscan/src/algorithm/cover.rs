@@ -346,10 +346,11 @@ fn for_each_window(regions: &[VisibilityRegion], mut f: impl FnMut(Point, Point,
 /// deepest of a few points stepped in from the middles of its longest edges, tested exactly
 /// against the domain and every polygon; only pieces whose probe lies in the free space and
 /// outside every polygon are counted, and a piece with no point deeper than 1e-7 of the
-/// domain's extent (a sliver) is not. A sliver can also hang off a real gap, joined to it in one piece (the
-/// overlay's ring runs out along a scan's edge and back): the deepest point lies in the gap,
-/// not in the sliver, where a probe would be "seen" within the rounding and drop the gap. A
-/// complete run measures 0; a real gap measures its area, to the overlay's precision.
+/// domain's extent (a sliver) is not. A sliver can also hang off a real gap, joined to it in
+/// one piece (the overlay's ring runs out along a scan's edge and back): the deepest point
+/// lies in the gap, not in the sliver, where a probe would be "seen" within the rounding and
+/// drop the gap. A complete run measures 0; a real gap measures its area, to the overlay's
+/// precision.
 pub fn uncovered_area(domain: &crate::geometry::Domain, seen: &[Vec<Point>]) -> f64 {
     use crate::algorithm::region::Region;
     let union = Region::union_all(seen);

@@ -84,9 +84,8 @@ impl<'a> Approach<'a> {
     /// Points stepped off the region's reflex vertices into it (along each vertex's interior
     /// bisector, or turned from it by [`ASIDE`] where the bisector's point is not clear, by
     /// [`STEPS`] times the clearance, and by [`TIGHT_STEP`] too where the bisector's first
-    /// point is not clear), from the [`MAX_CORNERS`] vertices nearest
-    /// the segment `near`, that keep the clearance themselves. Deterministic: ties keep the
-    /// region's vertex order.
+    /// point is not clear), from the [`MAX_CORNERS`] vertices nearest the segment `near`, that
+    /// keep the clearance themselves. Deterministic: ties keep the region's vertex order.
     pub(super) fn corners(&self, near: [Point; 2]) -> Vec<Point> {
         // Reflex vertices of every ring (the region lies left of each), by ring and index.
         let mut reflex: Vec<(f64, usize, usize)> = Vec::new();
@@ -123,23 +122,19 @@ impl<'a> Approach<'a> {
             if b == [0.0, 0.0] {
                 continue;
             }
-            // A point `k` clearances from the vertex: along the bisector or, where that comes
-            // too near another wall (a jamb close to the opposite wall), turned from it by
-            // [`ASIDE`], the first that keeps the clearance.
-            let step = |k: f64| {
-                ASIDE
-                    .iter()
-                    .map(|&a: &f64| {
-                        let (s, c) = a.sin_cos();
-                        let d = [c * b[0] - s * b[1], s * b[0] + c * b[1]];
-                        [q[0] + k * self.c * d[0], q[1] + k * self.c * d[1]]
-                    })
-                    .find(|&z| self.clear_point(z))
+            // The point `k` clearances from the vertex, turned by `a` from the bisector.
+            let at = |k: f64, a: f64| {
+                let (s, c) = a.sin_cos();
+                let d = [c * b[0] - s * b[1], s * b[0] + c * b[1]];
+                [q[0] + k * self.c * d[0], q[1] + k * self.c * d[1]]
             };
+            // Along the bisector or, where that comes too near another wall (a jamb close to
+            // the opposite wall), turned from it by [`ASIDE`]: the first that keeps the
+            // clearance.
+            let step = |k: f64| ASIDE.iter().map(|&a| at(k, a)).find(|&z| self.clear_point(z));
             // Beside such a jamb, also a point just beyond the clearance: the nearest the
             // robot comes to the vertex, from where it looks past it the farthest.
-            let first = [q[0] + STEPS[0] * self.c * b[0], q[1] + STEPS[0] * self.c * b[1]];
-            let tight = (!self.clear_point(first)).then_some(TIGHT_STEP);
+            let tight = (!self.clear_point(at(STEPS[0], 0.0))).then_some(TIGHT_STEP);
             out.extend(tight.into_iter().chain(STEPS).filter_map(step));
         }
         out

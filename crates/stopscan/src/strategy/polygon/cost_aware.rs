@@ -54,12 +54,12 @@
 //! `bench floors` (the five shared maps and 12 offices, one run with the other strategies):
 //! 276 scans and 11,195 s (0.829 × `depth_first`'s 13,503 s and 0.733 × `explore_lite`'s
 //! 15,263 s; the issue asks for 0.75 × both) since reflex vertices beside a near wall have
-//! graph points (`approach`); 283 scans and 11,375 s with the routes through safe cells before
-//! that, 281 scans and 12,043 s along the tree of moves, and 300 and 12,367 s before the raster's
-//! gain, the corners and the horizon; the warehouse 1,566 s → 1,245 s. On 16 other offices
-//! (`--seed 100 --offices 16`) 324 scans and 12,811 s (12,944 s before the graph points,
-//! 13,125 s along the tree; `depth_first` 15,015 s, `explore_lite` 15,997 s). Most choices below were made before
-//! the routes; they were compared on the benchmark's maps and on 16 offices of `stopscan
+//! graph points (`approach`); 283 scans and 11,375 s with the routes through safe cells
+//! before that, 281 scans and 12,043 s along the tree of moves, and 300 and 12,367 s before
+//! the raster's gain, the corners and the horizon; the warehouse 1,566 s → 1,245 s. On 16
+//! other offices (`--seed 100 --offices 16`) 324 scans and 12,811 s (12,944 s before the
+//! graph points, 13,125 s along the tree; `depth_first` 15,015 s, `explore_lite` 15,997 s).
+//! Most choices below were made before the routes; they were compared on the benchmark's maps and on 16 offices of `stopscan
 //! --seed S generate office` for S = 100 to 115 (rooms and desks as `bench floors` draws
 //! them, no start), where this strategy took 311 scans and 12,918 s against 342 and 13,486 s.
 //!
