@@ -385,7 +385,15 @@ pub fn read_with_report(path: &Path, opts: &RosMapOptions) -> Result<MapImport, 
         });
     }
     let y = read_yaml(path)?;
-    let img = read_image(&y.image)?;
+    // An image that cannot be read is named with the YAML that names it: the usual fault is
+    // the YAML's `image` path, not the image.
+    let img = read_image(&y.image).map_err(|e| match e {
+        LoadError::Io { file, source } => LoadError::Io {
+            file: format!("{file} (the image named by {}'s `image`)", path.display()),
+            source,
+        },
+        e => e,
+    })?;
     let (w, h) = (img.w, img.h);
     let mut free: Vec<bool> = img
         .px

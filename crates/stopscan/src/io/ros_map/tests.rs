@@ -359,3 +359,16 @@ fn a_start_on_a_grid_line_is_in_the_free_cell_beside_it() {
     let e = read_with_report(&path, &opts).unwrap_err().to_string();
     assert!(e.contains("outside the map"), "{e}");
 }
+
+#[test]
+fn a_missing_image_is_named_with_the_yaml_that_names_it() {
+    let dir = folder();
+    let yaml = dir.join("lost.yaml");
+    let text =
+        "image: nowhere.pgm\nresolution: 0.05\norigin: [0, 0, 0]\nnegate: 0\nfree_thresh: 0.2\n";
+    std::fs::write(&yaml, text).unwrap();
+    let e = read_with_report(&yaml, &RosMapOptions::default()).err().expect("no image");
+    let text = e.to_string();
+    assert!(matches!(e, LoadError::Io { .. }), "{text}");
+    assert!(text.contains("nowhere.pgm") && text.contains("lost.yaml's `image`"), "{text}");
+}
