@@ -614,9 +614,9 @@ pub(crate) struct GenerateArgs {
     /// Office desks.
     #[arg(long, default_value_t = 0, allow_negative_numbers = true, value_parser = count_at_least(0))]
     pub(crate) desks: usize,
-    /// The GeoJSON to write (with the start as its "start" property).
+    /// The GeoJSON to write (with the start as its "start" property); `--out` works too.
     #[arg(short = 'o', long = "output")]
-    pub(crate) output: PathBuf,
+    pub(crate) output: Option<PathBuf>,
 }
 
 #[derive(Debug, Subcommand)]
@@ -629,9 +629,9 @@ pub(crate) enum MapCommand {
 pub(crate) struct ImportArgs {
     /// The input: ROS map .yaml, GeoJSON, WKT, .pol, or the visibility benchmark format.
     pub(crate) file: PathBuf,
-    /// The GeoJSON to write.
+    /// The GeoJSON to write; `--out` works too.
     #[arg(short = 'o', long = "output")]
-    pub(crate) output: PathBuf,
+    pub(crate) output: Option<PathBuf>,
     /// ROS maps: the start "X,Y" in metres; the free region containing it is kept (default:
     /// the largest free region).
     #[arg(long, allow_hyphen_values = true)]

@@ -8,6 +8,7 @@ use crate::cli::{Family, GenerateArgs, Global};
 use crate::limits;
 
 pub(crate) fn run(a: &GenerateArgs, g: &Global) -> anyhow::Result<()> {
+    let output = crate::output::geojson_output(a.output.as_deref(), g)?;
     let n = a.size;
     let (max, what) = match a.family {
         Family::Forest => {
@@ -33,12 +34,12 @@ pub(crate) fn run(a: &GenerateArgs, g: &Global) -> anyhow::Result<()> {
         Family::Forest => generate::pillar_forest(30.0, 20.0, n, g.seed)?,
     };
     let geo = stopscan::io::text_formats::to_geojson(&inst.domain, Some(inst.start));
-    stopscan::io::atomic::write_json(&a.output, &geo)?;
+    stopscan::io::atomic::write_json(output, &geo)?;
     let d = &inst.domain;
     writeln!(
         std::io::stdout().lock(),
         "{}: {} vertices, {} holes, {} reflex",
-        a.output.display(),
+        output.display(),
         d.vertex_count(),
         d.holes().len(),
         d.reflex_vertices().len()

@@ -176,13 +176,9 @@ fn check_targets(args: &cli::Cli) -> anyhow::Result<()> {
                 file(a.trace.as_deref())
             }
         }
-        Some(Command::Generate(a)) => {
-            unused("generate")?;
-            check_file(&a.output)
-        }
+        Some(Command::Generate(a)) => check_file(output::geojson_output(a.output.as_deref(), g)?),
         Some(Command::Map { command: cli::MapCommand::Import(a) }) => {
-            unused("map import")?;
-            check_file(&a.output)
+            check_file(output::geojson_output(a.output.as_deref(), g)?)
         }
         Some(Command::Corner { command }) => match command {
             CornerCommand::Demo => ensure_dir(out.unwrap_or(Path::new("stopscan-out"))),

@@ -20,6 +20,7 @@ pub(crate) fn check_simplify(simplify: Option<f64>) -> anyhow::Result<()> {
 }
 
 pub(crate) fn import(a: &ImportArgs, g: &Global) -> anyhow::Result<()> {
+    let output = crate::output::geojson_output(a.output.as_deref(), g)?;
     let start = a.start.as_deref().map(parse_point).transpose()?;
     if !(a.min_speck_area.is_finite() && a.min_speck_area >= 0.0) {
         bail!("--min-speck-area must be a non-negative number");
@@ -43,10 +44,10 @@ pub(crate) fn import(a: &ImportArgs, g: &Global) -> anyhow::Result<()> {
     };
     let start = start.map(|s| env.frame.to_local(s)).or_else(|| env.default_start());
     let geo = stopscan::io::text_formats::to_geojson_in(&env.domain, start, &env.frame);
-    stopscan::io::atomic::write_json(&a.output, &geo)?;
+    stopscan::io::atomic::write_json(output, &geo)?;
     let d = &env.domain;
     let mut value = json!({
-        "input": a.file, "output": a.output, "vertices": d.vertex_count(), "holes": d.holes().len(),
+        "input": a.file, "output": output, "vertices": d.vertex_count(), "holes": d.holes().len(),
         "reflex_vertices": d.reflex_vertices().len(), "free_area": d.area(),
     });
     if let Some(r) = &report {
@@ -57,7 +58,7 @@ pub(crate) fn import(a: &ImportArgs, g: &Global) -> anyhow::Result<()> {
             w,
             "{} -> {}: {} vertices, {} holes, {} reflex, free area {}",
             a.file.display(),
-            a.output.display(),
+            output.display(),
             d.vertex_count(),
             d.holes().len(),
             d.reflex_vertices().len(),

@@ -96,6 +96,29 @@ pub(crate) fn bar(len: u64, unit: &str) -> indicatif::ProgressBar {
 
 /// Formats a float with `digits` decimals (in scientific notation from 1e15 on, so that a
 /// huge number stays readable), `-` for missing values, `inf` and `-inf`.
+/// The GeoJSON file a command that writes one (`map import`, `generate`) writes: its
+/// `-o/--output`, or the global `--out`, every other command's output flag, when that is
+/// given instead.
+///
+/// # Errors
+/// Neither given, or both naming different files.
+pub(crate) fn geojson_output<'a>(
+    output: Option<&'a std::path::Path>,
+    g: &'a Global,
+) -> anyhow::Result<&'a std::path::Path> {
+    match (output, g.out.as_deref()) {
+        (Some(o), Some(u)) if o != u => {
+            anyhow::bail!(
+                "two files to write: -o/--output {} and --out {}",
+                o.display(),
+                u.display()
+            )
+        }
+        (Some(o), _) | (None, Some(o)) => Ok(o),
+        (None, None) => anyhow::bail!("say where to write the GeoJSON: -o/--output FILE"),
+    }
+}
+
 pub(crate) fn num(v: Option<f64>, digits: usize) -> String {
     match v {
         Some(x) if x.is_finite() && x.abs() >= 1e15 => format!("{x:.digits$e}"),

@@ -229,6 +229,6 @@ fn outputs_are_checked_first_and_written_atomically() {
     let ab = dir.join("a.b");
     assert!(stopscan(&["corner", "thresholds", "--out", ab.to_str().unwrap()]).status.success());
     assert!(ab.exists());
-    fails(&["map", "import", "x.wkt", "-o", "y.geojson", "--out", "z"], &["--out is not used"]);
+    fails(&["map", "import", "x.wkt", "-o", "y.geojson", "--out", "z"], &["two files to write"]);
     assert_no_temporary_files(&dir);
 }

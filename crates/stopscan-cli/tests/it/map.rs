@@ -95,3 +95,24 @@ fn map_import_simplifies_within_the_tolerance_and_reports_the_area_change() {
     ]);
     assert!(v.get("simplification").is_none(), "{v}");
 }
+
+#[test]
+fn the_geojson_written_may_be_named_by_out_as_for_every_other_command() {
+    let dir = temp("import-out");
+    std::fs::create_dir_all(&dir).unwrap();
+    let map = common::fixture("ros-maps/turtlebot3_world.yaml");
+    let (a, b) = (dir.join("a.geojson"), dir.join("b.geojson"));
+    let (a, b) = (a.to_str().unwrap(), b.to_str().unwrap());
+    let v = json(&["map", "import", &map, "--out", a]);
+    assert_eq!(v["output"], a);
+    let geo: Value = serde_json::from_str(&std::fs::read_to_string(a).unwrap()).unwrap();
+    assert_eq!(geo["geometry"]["type"], "Polygon");
+    let g = stopscan(&["generate", "office", "--size", "2", "--out", b]);
+    assert!(g.status.success(), "{}", String::from_utf8_lossy(&g.stderr));
+    assert!(std::fs::read_to_string(b).unwrap().contains("\"start\""));
+    // The same file twice is one file; two files, or none, are refused before any work.
+    json(&["map", "import", &map, "-o", a, "--out", a]);
+    fails(&["map", "import", &map, "-o", a, "--out", b], &["two files to write", "a.geojson"]);
+    fails(&["map", "import", &map], &["-o/--output FILE"]);
+    fails(&["generate", "comb"], &["-o/--output FILE"]);
+}
