@@ -491,6 +491,11 @@ pub(crate) struct ExploreArgs {
         requires = "sensor"
     )]
     pub(crate) odometry_drift: f64,
+    /// Stop the run after N scans, done or not: a run stopped before the strategy is done is
+    /// recorded with the reason (exit code 2), its record written as for any run cut short
+    /// [default: no limit but the simulator's, 20,000 scans from raw scans, a million steps].
+    #[arg(long, value_name = "N", allow_negative_numbers = true, value_parser = count_at_least(1))]
+    pub(crate) max_scans: Option<usize>,
 }
 
 /// A `--sensor` specification.

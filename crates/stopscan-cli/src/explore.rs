@@ -68,6 +68,7 @@ fn options(a: &ExploreArgs, g: &Global) -> anyhow::Result<ExploreOptions> {
         simplify: a.simplify,
         lidar: a.sensor,
         odometry_drift: a.odometry_drift,
+        max_scans: a.max_scans.map(|n| n as u64),
     })
 }
 

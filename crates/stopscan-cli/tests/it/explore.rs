@@ -507,3 +507,42 @@ fn a_sweep_in_shards_merges_into_the_whole_sweep_byte_for_byte() {
         fails(&["explore", "--env", envs.to_str().unwrap(), "--shard", bad], &["--shard"]);
     }
 }
+
+#[test]
+fn max_scans_cuts_a_run_short_and_says_so() {
+    let map = common::fixture("ros-maps/turtlebot3_world.yaml");
+    let dir = temp("max-scans");
+    std::fs::create_dir_all(&dir).unwrap();
+    let out = dir.join("run.json");
+    let out = out.to_str().unwrap();
+    let args = || {
+        let mut a = vec!["explore", "--env", &map, "--strategy", "cost_aware"];
+        a.extend(["--robot-radius", "0.2", "--range", "20", "--out", out]);
+        a.extend(["--greedy-max-vertices", "0", "--optimum-seconds", "0"]);
+        a.into_iter().map(String::from).collect::<Vec<_>>()
+    };
+    let run = |a: &[String]| {
+        let a: Vec<&str> = a.iter().map(String::as_str).collect();
+        let o = stopscan(&a);
+        let v: Value = serde_json::from_str(&std::fs::read_to_string(out).unwrap()).unwrap();
+        (o, v)
+    };
+    let (o, whole) = run(&args());
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    let n = whole["metrics"]["scans"].as_u64().unwrap();
+    let fewer = (n - 1).to_string();
+    let mut a = args();
+    a.extend(["--max-scans".to_string(), fewer.clone()]);
+    let (o, cut) = run(&a);
+    assert_eq!(o.status.code(), Some(2));
+    let err = String::from_utf8_lossy(&o.stderr);
+    assert!(err.contains(&format!("scan limit ({fewer} scans, --max-scans)")), "{err}");
+    assert_eq!(cut["metrics"]["scans"].as_u64(), Some(n - 1));
+    assert!(cut["error"].as_str().unwrap().contains("--max-scans"));
+    let mut a = args();
+    a.extend(["--max-scans".to_string(), n.to_string()]);
+    let (o, same) = run(&a);
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    assert_eq!(same["metrics"], whole["metrics"]);
+    fails(&["explore", "--env", &map, "--max-scans", "0"], &["--max-scans"]);
+}

@@ -17,8 +17,8 @@ use crate::io::ros_map::RosMapOptions;
 use crate::io::{Environment, LoadError};
 use crate::kernel::{Num, Point};
 use crate::offline::polygon::{OfflineError, ReferenceLimits};
-use crate::protocol::CostModel;
 use crate::protocol::polygon::{Footprint, PolygonObservation, RobotSetup, Sensor};
+use crate::protocol::{Action, CostModel, Feedback};
 use crate::run_record::{RobotInfo, RunRecord, SensorInfo};
 use crate::sim::lidar::{LidarRun, LidarSetup};
 use crate::sim::polygon::{PolygonSimError, Reframe};
@@ -70,6 +70,9 @@ pub struct ExploreOptions {
     /// ([`crate::io::ros_map::RosMapOptions::simplify`]; `None`: the loader's default, 1.5
     /// cells). Other formats are read as they are.
     pub simplify: Option<f64>,
+    /// Stop the run after this many scans, done or not (`None`: only the simulator's own
+    /// limits); a run stopped so is recorded with the reason, as a run cut short.
+    pub max_scans: Option<u64>,
 }
 
 impl Default for ExploreOptions {
@@ -92,6 +95,7 @@ impl Default for ExploreOptions {
             simplify: None,
             lidar: None,
             odometry_drift: 0.0,
+            max_scans: None,
         }
     }
 }
@@ -449,11 +453,21 @@ pub fn office(seed: u64, progress: Progress) -> Result<Exploration, ExploreError
     explore("office (built-in)", &env, None, &options, progress)
 }
 
-/// Counts scans and metres for the progress line.
+/// Counts scans and metres for the progress line, and stops the run at the scan limit.
 struct Counter<'a, 'p> {
     progress: &'a mut Progress<'p>,
     scans: u64,
     metres: f64,
+    /// [`ExploreOptions::max_scans`].
+    limit: Option<u64>,
+    /// Whether the run was stopped at the limit.
+    stopped: bool,
+}
+
+impl<'a, 'p> Counter<'a, 'p> {
+    fn new(progress: &'a mut Progress<'p>, limit: Option<u64>) -> Self {
+        Self { progress, scans: 0, metres: 0.0, limit, stopped: false }
+    }
 }
 
 impl<O> Observer<Point, O> for Counter<'_, '_> {
@@ -464,6 +478,10 @@ impl<O> Observer<Point, O> for Counter<'_, '_> {
     fn on_scan(&mut self, _robot: usize, _at: &Point, _o: &O) -> std::ops::ControlFlow<()> {
         self.scans += 1;
         (self.progress)(&format!("{} scans, {:.1} m", self.scans, self.metres));
+        if self.limit.is_some_and(|n| self.scans >= n) {
+            self.stopped = true;
+            return std::ops::ControlFlow::Break(());
+        }
         std::ops::ControlFlow::Continue(())
     }
 }
@@ -513,7 +531,7 @@ pub fn explore(
     if world.scan(start).is_err() {
         return Err(ExploreError::StartOutside(frame.to_input(start)));
     }
-    let mut counter = Counter { progress: &mut progress, scans: 0, metres: 0.0 };
+    let mut counter = Counter::new(&mut progress, o.max_scans);
     let mut drive = |observer: &mut dyn Observer<Point, PolygonObservation>| {
         Driven::run(&world, start, &o.cost, strategy.as_mut(), lidar.as_ref(), observer)
     };
@@ -536,7 +554,10 @@ pub fn explore(
             driven
         }
     };
-    let Driven { run, failure, raw } = driven;
+    let Driven { run, mut failure, raw } = driven;
+    if counter.stopped && failure.is_none() {
+        failure = cut_at_limit(strategy.as_mut(), &run, raw.as_ref(), counter.scans);
+    }
     let failure = failure.map(|e| e.map_places(|p| frame.to_input(p)));
     // A run cut short is not measured against the offline references (they take time, and a
     // ratio of an unfinished run means nothing); its record says why it ended.
@@ -582,6 +603,22 @@ pub fn explore(
     let mut record = record.in_frame(&frame);
     record.error = failure.as_ref().map(ToString::to_string);
     Ok(Exploration { record, svg, replay, failure })
+}
+
+/// A run stopped at its scan limit after `scans` scans: cut short unless the strategy, told
+/// of the last scan as it saw it (from raw scans, the region read from the scan), is done
+/// (then the run is the unlimited one).
+fn cut_at_limit(
+    strategy: &mut dyn crate::strategy::polygon::PolygonStrategy,
+    run: &crate::sim::polygon::PolygonRun,
+    raw: Option<&LidarRun>,
+    scans: u64,
+) -> Option<PolygonSimError> {
+    let last = raw.map_or(run.scans.last(), |r| r.observations.last()).cloned();
+    let done =
+        last.is_some_and(|obs| matches!(strategy.act(&Feedback::Scanned(obs)), Action::Done));
+    (!done)
+        .then(|| crate::sim::SimError::ScanLimit { strategy: strategy.name().to_string(), scans })
 }
 
 /// The scene (SVG) and the browser replay's data of `run` in `world` (on `env`'s domain).
@@ -746,5 +783,44 @@ mod tests {
         let o = ExploreOptions { strategy: "warp".into(), ..ExploreOptions::default() };
         let e = explore("office", &env, Some([0.0, 0.0]), &o, &mut |_| {}).unwrap_err();
         assert!(matches!(e, ExploreError::Strategy(_)), "{e}");
+    }
+
+    #[test]
+    fn a_scan_limit_cuts_the_run_short_unless_the_strategy_is_done_there() {
+        // A small generated office: two rooms a side along a corridor.
+        let inst = crate::generate::office(2, 0, 0).unwrap();
+        let geo = crate::io::text_formats::to_geojson(&inst.domain, Some(inst.start));
+        let env = crate::io::text_formats::parse_geojson(&geo.to_string(), "office-2").unwrap();
+        let run = |max_scans: Option<u64>, lidar: bool| {
+            let o = ExploreOptions {
+                strategy: "cost_aware".into(),
+                range: Some(20.0),
+                footprint: Footprint::disc(0.2).unwrap(),
+                limits: ReferenceLimits { bounds_seconds: 0.0, ..ReferenceLimits::BOUNDS_ONLY },
+                lidar: lidar.then(crate::world::lidar::Lidar::default),
+                max_scans,
+                ..ExploreOptions::default()
+            };
+            explore("office", &env, None, &o, &mut |_| {}).unwrap()
+        };
+        for lidar in [false, true] {
+            let whole = run(None, lidar);
+            assert!(whole.failure.is_none(), "{:?}", whole.failure);
+            let n = whole.record.metrics.totals.scans;
+            assert!(n >= 3, "{n} scans");
+            // Stopped before the end: cut short after exactly the limit, and said so.
+            let cut = run(Some(n - 1), lidar);
+            assert_eq!(cut.record.metrics.totals.scans, n - 1);
+            let e = cut.failure.expect("cut short").to_string();
+            assert!(e.contains(&format!("scan limit ({} scans, --max-scans)", n - 1)), "{e}");
+            assert_eq!(cut.record.error.as_deref(), Some(e.as_str()));
+            // A limit the run just reaches, or (exact sensor) one beyond it, changes nothing.
+            for limit in if lidar { vec![n] } else { vec![n, n + 5] } {
+                let same = run(Some(limit), lidar);
+                assert!(same.failure.is_none(), "{limit}: {:?}", same.failure);
+                assert_eq!(same.record.metrics, whole.record.metrics, "{limit}");
+                assert_eq!(same.record.sensor, whole.record.sensor, "{limit}");
+            }
+        }
     }
 }

@@ -155,6 +155,16 @@ pub enum SimError<P: Debug> {
     /// The team did not finish within the step limit.
     #[error("strategy {0} did not finish within {1} steps")]
     TooLong(String, u64),
+    /// The run was stopped at the scan limit the user set, before the strategy was done.
+    #[error(
+        "strategy {strategy} was stopped at the scan limit ({scans} scans, --max-scans) before it was done"
+    )]
+    ScanLimit {
+        /// The strategy.
+        strategy: String,
+        /// The scans taken.
+        scans: u64,
+    },
     /// A strategy asked to scan, in a static world, where a scan already stood: it would see
     /// nothing new, so it has stopped making progress.
     #[error(
@@ -186,6 +196,7 @@ impl<P: Debug> SimError<P> {
                 SimError::Blocked { strategy, robot, from: f(from), to: f(to) }
             }
             Self::TooLong(s, n) => SimError::TooLong(s, n),
+            Self::ScanLimit { strategy, scans } => SimError::ScanLimit { strategy, scans },
             Self::NoProgress { strategy, robot, at, earlier, scans } => {
                 SimError::NoProgress { strategy, robot, at: f(at), earlier, scans }
             }

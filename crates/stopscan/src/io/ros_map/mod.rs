@@ -231,6 +231,18 @@ pub(crate) struct Grey {
     pub(crate) px: Vec<u8>,
 }
 
+/// The image the YAML at `yaml` names (`image`, at `path`): one that cannot be read is named
+/// with the YAML, as the usual fault is the YAML's `image` path, not the image.
+fn read_image_of(yaml: &Path, path: &Path) -> Result<Grey, LoadError> {
+    read_image(path).map_err(|e| match e {
+        LoadError::Io { file, source } => LoadError::Io {
+            file: format!("{file} (the image named by {}'s `image`)", yaml.display()),
+            source,
+        },
+        e => e,
+    })
+}
+
 pub(crate) fn read_image(path: &Path) -> Result<Grey, LoadError> {
     let bytes = std::fs::read(path)
         .map_err(|source| LoadError::Io { file: path.display().to_string(), source })?;
@@ -385,15 +397,7 @@ pub fn read_with_report(path: &Path, opts: &RosMapOptions) -> Result<MapImport, 
         });
     }
     let y = read_yaml(path)?;
-    // An image that cannot be read is named with the YAML that names it: the usual fault is
-    // the YAML's `image` path, not the image.
-    let img = read_image(&y.image).map_err(|e| match e {
-        LoadError::Io { file, source } => LoadError::Io {
-            file: format!("{file} (the image named by {}'s `image`)", path.display()),
-            source,
-        },
-        e => e,
-    })?;
+    let img = read_image_of(path, &y.image)?;
     let (w, h) = (img.w, img.h);
     let mut free: Vec<bool> = img
         .px

@@ -367,7 +367,7 @@ fn a_missing_image_is_named_with_the_yaml_that_names_it() {
     let text =
         "image: nowhere.pgm\nresolution: 0.05\norigin: [0, 0, 0]\nnegate: 0\nfree_thresh: 0.2\n";
     std::fs::write(&yaml, text).unwrap();
-    let e = read_with_report(&yaml, &RosMapOptions::default()).err().expect("no image");
+    let e = read_with_report(&yaml, &RosMapOptions::default()).expect_err("no image");
     let text = e.to_string();
     assert!(matches!(e, LoadError::Io { .. }), "{text}");
     assert!(text.contains("nowhere.pgm") && text.contains("lost.yaml's `image`"), "{text}");
