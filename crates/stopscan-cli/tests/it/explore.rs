@@ -545,4 +545,15 @@ fn max_scans_cuts_a_run_short_and_says_so() {
     assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
     assert_eq!(same["metrics"], whole["metrics"]);
     fails(&["explore", "--env", &map, "--max-scans", "0"], &["--max-scans"]);
+    // A folder sweep's rows are whole runs: the limit is refused there, not ignored.
+    let sweep = dir.join("sweep");
+    std::fs::create_dir_all(&sweep).unwrap();
+    std::fs::copy(&map, sweep.join("tb3.yaml")).unwrap();
+    let pgm = common::fixture("ros-maps/turtlebot3_world.pgm");
+    std::fs::copy(pgm, sweep.join("turtlebot3_world.pgm")).unwrap();
+    let s = sweep.to_str().unwrap();
+    fails(
+        &["explore", "--env", s, "--max-scans", "3"],
+        &["--max-scans applies to one environment"],
+    );
 }

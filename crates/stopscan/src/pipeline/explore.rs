@@ -354,6 +354,12 @@ pub enum ExploreError {
         "a folder sweep runs a point robot with an ideal sensor; {0} applies to one environment (explore --env FILE) or to bench floors --data DIR"
     )]
     RobotInSweep(&'static str),
+    /// A folder sweep was given a scan limit: its rows are whole runs, each measured against
+    /// the paper's bounds.
+    #[error(
+        "a folder sweep runs every strategy to its end; --max-scans applies to one environment (explore --env FILE)"
+    )]
+    LimitInSweep,
 }
 
 /// The range is a finite positive distance, and `range_limited`, named explicitly, has one

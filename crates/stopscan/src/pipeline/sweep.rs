@@ -118,7 +118,8 @@ fn file_name(path: &Path) -> String {
 
 /// Checks a sweep's options and returns the strategies it runs ([`strategies`] of
 /// `options.strategy`). A robot (a footprint or a window rule) is refused:
-/// [`ExploreError::RobotInSweep`], as the rows are a point robot's.
+/// [`ExploreError::RobotInSweep`], as the rows are a point robot's; so is a scan limit
+/// ([`ExploreError::LimitInSweep`]), as they are whole runs.
 ///
 /// # Errors
 /// [`ExploreError`] for an unknown strategy or bad options.
@@ -131,6 +132,9 @@ pub fn sweep_strategies(options: &ExploreOptions) -> Result<Vec<&'static str>, E
     // a robot's options would be silently ignored, so they are refused.
     if !options.footprint.is_point() {
         return Err(ExploreError::RobotInSweep("a footprint (--robot-radius, --footprint)"));
+    }
+    if options.max_scans.is_some() {
+        return Err(ExploreError::LimitInSweep);
     }
     if options.lidar.is_some() {
         return Err(ExploreError::RobotInSweep("raw scans (--sensor, --odometry-drift)"));
