@@ -94,8 +94,6 @@ pub(crate) fn bar(len: u64, unit: &str) -> indicatif::ProgressBar {
     bar
 }
 
-/// Formats a float with `digits` decimals (in scientific notation from 1e15 on, so that a
-/// huge number stays readable), `-` for missing values, `inf` and `-inf`.
 /// The GeoJSON file a command that writes one (`map import`, `generate`) writes: its
 /// `-o/--output`, or the global `--out`, every other command's output flag, when that is
 /// given instead.
@@ -119,6 +117,8 @@ pub(crate) fn geojson_output<'a>(
     }
 }
 
+/// Formats a float with `digits` decimals (in scientific notation from 1e15 on, so that a
+/// huge number stays readable), `-` for missing values, `inf` and `-inf`.
 pub(crate) fn num(v: Option<f64>, digits: usize) -> String {
     match v {
         Some(x) if x.is_finite() && x.abs() >= 1e15 => format!("{x:.digits$e}"),

@@ -59,9 +59,10 @@
 //! the raster's gain, the corners and the horizon; the warehouse 1,566 s → 1,245 s. On 16
 //! other offices (`--seed 100 --offices 16`) 324 scans and 12,811 s (12,944 s before the
 //! graph points, 13,125 s along the tree; `depth_first` 15,015 s, `explore_lite` 15,997 s).
-//! Most choices below were made before the routes; they were compared on the benchmark's maps and on 16 offices of `stopscan
-//! --seed S generate office` for S = 100 to 115 (rooms and desks as `bench floors` draws
-//! them, no start), where this strategy took 311 scans and 12,918 s against 342 and 13,486 s.
+//! Most choices below were made before the routes; they were compared on the benchmark's
+//! maps and on 16 offices of `stopscan --seed S generate office` for S = 100 to 115 (rooms
+//! and desks as `bench floors` draws them, no start), where this strategy took 311 scans and
+//! 12,918 s against 342 and 13,486 s.
 //!
 //! With the routes, these did not pay (`bench floors`, 11,391 s before them; differences of
 //! a few per cent either way are within what any change of a choice moves the sum):
