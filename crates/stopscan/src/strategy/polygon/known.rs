@@ -969,7 +969,7 @@ impl Known {
                 // sin of half the corner's angle: the step along the bisector that puts the
                 // point `c + inset` from both sides.
                 let half_sin = (u[0] * w[1] - u[1] * w[0]).abs() / lb;
-                if lb == 0.0 || half_sin < 0.2 {
+                if lb == 0.0 || !(0.2..=FLAT_CORNER).contains(&half_sin) {
                     return None;
                 }
                 let s = (c + inset) / half_sin;
@@ -1290,6 +1290,11 @@ const UNION_MARGIN: f64 = 10.0;
 
 /// How many waypoints ahead [`Known::go_shortcut`] looks for a straight move.
 const SHORTCUT_LOOKAHEAD: usize = 24;
+
+/// A convex vertex of a region whose angle is wider than 150° (the sine of half of it above
+/// this) is a kink of a wall, not a corner of a room: a viewpoint stepped in from it stands
+/// beside the wall, from where the wall is seen at a grazing angle.
+const FLAT_CORNER: f64 = 0.966;
 
 /// The least angle (radians) at which a sight line from a corner must cross a window part
 /// for the corner to be worth a scan that looks through it ([`Known::clear_point`]'s last
@@ -1674,5 +1679,21 @@ mod tests {
         // A gap holding an interval whole removes it; one between intervals changes nothing.
         assert_eq!(uncover(&covered, [0.25, 0.65]), [[0.0, 0.2], [0.7, 1.0]]);
         assert_eq!(uncover(&covered, [0.2, 0.3]), covered);
+    }
+    #[test]
+    fn a_flat_kink_of_a_wall_is_not_a_corner() {
+        use crate::algorithm::visibility::Visibility;
+        use crate::geometry::Domain;
+        // The room of the test above with its bottom wall kinked out by 174° at (2, -0.1).
+        let ring = vec![[0.0, 0.0], [2.0, -0.1], [4.0, 0.0], [4.0, 3.0], [0.0, 3.0]];
+        let vis = Visibility::new(Domain::new(ring, vec![]).unwrap()).unwrap();
+        let at = [1.0, 1.0];
+        let setup =
+            RobotSetup { footprint: Footprint::disc(0.2).unwrap(), ..RobotSetup::default() };
+        let mut k = Known::for_robot(&setup);
+        k.add(&PolygonObservation { at, region: vis.query(at).unwrap() });
+        let pts = k.corner_points(0, at, 10.0, 0.1, 16);
+        assert_eq!(pts.len(), 4, "the room's four corners only: {pts:?}");
+        assert!(pts.iter().all(|p| (p[0] - 2.0).abs() > 1.0), "{pts:?}");
     }
 }
