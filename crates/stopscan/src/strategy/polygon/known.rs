@@ -1680,11 +1680,13 @@ mod tests {
         assert_eq!(uncover(&covered, [0.25, 0.65]), [[0.0, 0.2], [0.7, 1.0]]);
         assert_eq!(uncover(&covered, [0.2, 0.3]), covered);
     }
+
     #[test]
     fn a_flat_kink_of_a_wall_is_not_a_corner() {
         use crate::algorithm::visibility::Visibility;
         use crate::geometry::Domain;
-        // The room of the test above with its bottom wall kinked out by 174° at (2, -0.1).
+        // The room of `corner_points_stand_inset_beyond_the_clearance_from_both_walls`, its
+        // bottom wall kinked out at (2, -0.1) by 174°.
         let ring = vec![[0.0, 0.0], [2.0, -0.1], [4.0, 0.0], [4.0, 3.0], [0.0, 3.0]];
         let vis = Visibility::new(Domain::new(ring, vec![]).unwrap()).unwrap();
         let at = [1.0, 1.0];
