@@ -278,8 +278,9 @@ impl<'a> SimRobot<'a> {
 /// Runs `strategy` in `world` from `start` on raw scans ([`LidarSetup`]), until it is done.
 ///
 /// # Errors
-/// [`LidarRunError`], with the run so far: a scan asked for where one already stood, or more
-/// than [`MAX_SCANS`] scans.
+/// [`LidarRunError`], with the run so far: a scan asked for where one already stood (unless a
+/// move failed since the last scan: the robot scans to place itself again), or more than
+/// [`MAX_SCANS`] scans.
 pub fn run(
     world: &PolygonWorld,
     start: Point,
@@ -340,6 +341,9 @@ struct Robot<'a> {
     tally: Tally,
     /// Metres driven since the last scan: how far odometry may have drifted.
     since_scan: f64,
+    /// Whether a move failed since the last scan: a scan where one already stood then places
+    /// the robot again (its belief drifted on the way there), and counts as progress.
+    failed_since_scan: bool,
     out: LidarRun,
 }
 
@@ -352,6 +356,7 @@ impl<'a> Robot<'a> {
             mapper: Mapper::new(setup.mapper_params()),
             tally,
             since_scan: 0.0,
+            failed_since_scan: false,
             out: LidarRun {
                 truth: PolygonRun {
                     tally,
@@ -377,6 +382,7 @@ impl<'a> Robot<'a> {
         let drive = self.sim.drive(to);
         let at = self.sim.odometry().at();
         self.since_scan += (at[0] - from[0]).hypot(at[1] - from[1]);
+        self.failed_since_scan |= drive.failed.is_some();
         self.out.truth.path.extend_from_slice(&drive.legs[1..]);
         if drive.legs.len() > 1 {
             self.tally.moves += 1;
@@ -395,7 +401,9 @@ impl<'a> Robot<'a> {
     ) -> Result<PolygonObservation, PolygonSimError> {
         let odometry = self.sim.odometry();
         let at = odometry.at();
-        if let Some(k) = self.out.observations.iter().position(|o| o.at == at) {
+        if !std::mem::take(&mut self.failed_since_scan)
+            && let Some(k) = self.out.observations.iter().position(|o| o.at == at)
+        {
             return Err(SimError::NoProgress {
                 strategy: name.into(),
                 robot: 0,

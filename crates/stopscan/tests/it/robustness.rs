@@ -215,3 +215,56 @@ fn the_loop_ends_a_strategy_that_stops_making_progress_and_keeps_the_run_so_far(
     assert_eq!(e.partial.tally.scans, 2);
     assert_eq!(e.partial.path, vec![[1.0, 1.0], [3.0, 1.0], [1.0, 1.0]]);
 }
+
+#[test]
+fn moves_that_keep_failing_at_one_place_are_followed_by_a_scan_there() {
+    use stopscan::algorithm::visibility::Visibility;
+    use stopscan::protocol::polygon::{Footprint, PolygonObservation, RobotSetup};
+    use stopscan::protocol::{Feedback, MoveFailure};
+    use stopscan::strategy::polygon::DepthFirst;
+    // An office floor; every goal within 0.5 m of `blocked` fails without the robot moving,
+    // as a goal that odometry's drift put inside an obstacle does, whatever the strategy
+    // plans: the belief there is wrong.
+    let inst = office(3, 0, 1).unwrap();
+    let vis = Visibility::new(inst.domain).unwrap();
+    let scan =
+        |at: Point| Feedback::Scanned(PolygonObservation { at, region: vis.query(at).unwrap() });
+    let setup = RobotSetup { footprint: Footprint::disc(0.2).unwrap(), ..RobotSetup::default() };
+    let mut s = DepthFirst::for_robot(&setup);
+    let mut here = inst.start;
+    let mut fb: PolygonFeedback = Feedback::Start { at: here };
+    let (mut blocked, mut scans): (Option<Point>, usize) = (None, 0);
+    let (mut failures, mut relocations, mut done) = (0, 0, false);
+    for _ in 0..2_000 {
+        let after_failure = matches!(fb, Feedback::MoveFailed { .. });
+        match s.act(&fb) {
+            Action::Scan => {
+                relocations += usize::from(after_failure);
+                scans += 1;
+                fb = scan(here);
+            }
+            Action::MoveTo { to } => {
+                // The first goal after the second scan is where the belief is wrong.
+                if blocked.is_none() && scans == 2 {
+                    blocked = Some(to);
+                }
+                if blocked.is_some_and(|b| (b[0] - to[0]).hypot(b[1] - to[1]) <= 0.5) {
+                    failures += 1;
+                    fb = Feedback::MoveFailed { at: here, reason: MoveFailure::Blocked };
+                } else {
+                    here = to;
+                    fb = Feedback::Arrived;
+                }
+            }
+            Action::Done => {
+                done = true;
+                break;
+            }
+        }
+    }
+    assert!(done, "the exploration ends");
+    assert!(failures >= 3, "{failures} failures");
+    assert!(relocations >= 1, "no scan after repeated failures at one place");
+    // Each relocating scan follows failures that dropped targets.
+    assert!(relocations <= s.skipped().move_failed, "{relocations} relocating scans");
+}

@@ -96,6 +96,22 @@ impl Trip {
         Next::Act(self.next_move())
     }
 
+    /// The waypoint the robot was sent to last, unless it is driving back after a failed
+    /// move.
+    pub(super) fn issued_ahead(&self) -> Option<Point> {
+        self.issued.filter(|_| !self.returning)
+    }
+
+    /// The waypoints reached since the trip started, in order.
+    pub(super) fn driven(&self) -> &[Point] {
+        &self.driven
+    }
+
+    /// Forgets the trip: the robot scans where it stands.
+    pub(super) fn clear(&mut self) {
+        *self = Self::default();
+    }
+
     /// Where the trip started: the last scan's viewpoint, or where a way back after a failed
     /// move ended.
     pub(super) fn start(&self) -> Option<Point> {
