@@ -1122,8 +1122,7 @@ impl Known {
         // The robot's position, then the waypoints, each with the view whose viewpoint it is.
         let mut all = vec![self.views[from].at];
         all.extend_from_slice(&pts);
-        let owner: Vec<Option<usize>> =
-            all.iter().map(|&p| self.views.iter().position(|v| v.at == p)).collect();
+        let owner: Vec<Option<usize>> = all.iter().map(|&p| self.view_at(p)).collect();
         let mut out = Vec::with_capacity(pts.len());
         let mut i = 0;
         while i + 1 < all.len() {
@@ -1217,11 +1216,9 @@ impl Known {
         {
             let driven = self.trip.driven();
             // From the latest viewpoint the trip passed, through the waypoints after it.
-            let last =
-                driven.iter().enumerate().rev().find_map(|(i, p)| {
-                    self.views.iter().position(|v| v.at == *p).map(|v| (i + 1, v))
-                });
-            let (from, view) = last.unwrap_or((0, self.here));
+            let (from, view) = (driven.iter().enumerate().rev())
+                .find_map(|(i, &p)| self.view_at(p).map(|v| (i + 1, v)))
+                .unwrap_or((0, self.here));
             t.via = driven[from..].to_vec();
             t.anchor = Some(view);
             t.relocate = true;
@@ -1235,6 +1232,11 @@ impl Known {
         }
         let views = &self.views;
         self.trip.failed_back_to(|p| views.iter().any(|v| v.at == p))
+    }
+
+    /// The view whose viewpoint is `p`, the earliest if several are.
+    fn view_at(&self, p: Point) -> Option<usize> {
+        self.views.iter().position(|v| v.at == p)
     }
 
     /// The chain of views from `v` up to the root.
@@ -1433,7 +1435,7 @@ pub(super) fn act<S>(
                 // Back where the trip started, or at the viewpoint a way back ended at.
                 let k = known(s);
                 if let Some(p) = k.trip.start()
-                    && let Some(v) = k.views.iter().position(|w| w.at == p)
+                    && let Some(v) = k.view_at(p)
                 {
                     k.here = v;
                 }
@@ -1512,17 +1514,22 @@ mod tests {
         k
     }
 
-    #[test]
-    fn corner_points_stand_inset_beyond_the_clearance_from_both_walls() {
+    /// A robot of radius 0.2 m that has scanned the room `ring` from `at`.
+    fn room_seen_from(ring: Vec<Point>, at: Point) -> Known {
         use crate::algorithm::visibility::Visibility;
         use crate::geometry::Domain;
-        let ring = vec![[0.0, 0.0], [4.0, 0.0], [4.0, 3.0], [0.0, 3.0]];
         let vis = Visibility::new(Domain::new(ring, vec![]).unwrap()).unwrap();
-        let at = [1.0, 1.0];
         let setup =
             RobotSetup { footprint: Footprint::disc(0.2).unwrap(), ..RobotSetup::default() };
         let mut k = Known::for_robot(&setup);
         k.add(&PolygonObservation { at, region: vis.query(at).unwrap() });
+        k
+    }
+
+    #[test]
+    fn corner_points_stand_inset_beyond_the_clearance_from_both_walls() {
+        let at = [1.0, 1.0];
+        let k = room_seen_from(vec![[0.0, 0.0], [4.0, 0.0], [4.0, 3.0], [0.0, 3.0]], at);
         let c = k.clearance(0);
         let s = c + 0.1;
         let pts = k.corner_points(0, at, 10.0, 0.1, 16);
@@ -1741,17 +1748,11 @@ mod tests {
 
     #[test]
     fn a_flat_kink_of_a_wall_is_not_a_corner() {
-        use crate::algorithm::visibility::Visibility;
-        use crate::geometry::Domain;
         // The room of `corner_points_stand_inset_beyond_the_clearance_from_both_walls`, its
         // bottom wall kinked out at (2, -0.1) by 174°.
         let ring = vec![[0.0, 0.0], [2.0, -0.1], [4.0, 0.0], [4.0, 3.0], [0.0, 3.0]];
-        let vis = Visibility::new(Domain::new(ring, vec![]).unwrap()).unwrap();
         let at = [1.0, 1.0];
-        let setup =
-            RobotSetup { footprint: Footprint::disc(0.2).unwrap(), ..RobotSetup::default() };
-        let mut k = Known::for_robot(&setup);
-        k.add(&PolygonObservation { at, region: vis.query(at).unwrap() });
+        let k = room_seen_from(ring, at);
         let pts = k.corner_points(0, at, 10.0, 0.1, 16);
         assert_eq!(pts.len(), 4, "the room's four corners only: {pts:?}");
         assert!(pts.iter().all(|p| (p[0] - 2.0).abs() > 1.0), "{pts:?}");
