@@ -39,6 +39,22 @@ pub(super) struct View {
     rounding: f64,
 }
 
+/// The sensor rule's lift on a window's parts.
+#[derive(Debug, Clone, Copy, Default, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "snake_case")]
+enum Lift {
+    /// The rule applies; the window was never reopened.
+    #[default]
+    Never,
+    /// Part of the window was opened again as part of a longer opening: the rule does not
+    /// apply to its parts.
+    Lifted,
+    /// A scan was taken for one of its parts since the lift: the opening was visited, and
+    /// what is left of it (parts that other scans' regions split off, which noisy scans do
+    /// often) is judged by the rule again. A window is reopened at most once.
+    Spent,
+}
+
 /// A window and how far its exploration test has got: the parts of it (as parameter
 /// intervals from `from` to `to`) whose far side is covered, by the views before `checked`
 /// or by a scan taken for it. Covered parts only grow, so the test resumes where it stopped.
@@ -55,10 +71,9 @@ struct Window {
     /// window by other views (not a whole window below the rule).
     #[serde(default)]
     ruled: Intervals,
-    /// The rule no longer applies to the window: part of it was opened again as part of a
-    /// longer opening ([`Known::reopen_wide_openings`]).
+    /// Whether the rule was lifted for the window ([`Known::reopen_wide_openings`]).
     #[serde(default)]
-    rule_lifted: bool,
+    lift: Lift,
     checked: usize,
     /// The piece is a range frontier (a chord of the sensor's range arc), not a window: the
     /// sensor rule does not apply to it.
@@ -491,6 +506,12 @@ impl Known {
         if let Some(t) = pending.as_ref().filter(|t| !t.off_gap && !t.relocate) {
             self.handled(t);
         }
+        if let Some(t) = pending.as_ref().filter(|t| !t.relocate) {
+            let w = &mut self.views[t.view].windows[t.window];
+            if w.lift == Lift::Lifted {
+                w.lift = Lift::Spent;
+            }
+        }
         let (sensor, at) = (self.sensor, obs.at);
         let skipped = &mut self.skipped;
         let windows = obs
@@ -519,7 +540,7 @@ impl Known {
                         tol,
                         covered,
                         ruled: Vec::new(),
-                        rule_lifted: false,
+                        lift: Lift::Never,
                         checked: 0,
                         range_frontier,
                         no_junction: false,
@@ -607,7 +628,7 @@ impl Known {
             let p = [from[0] + gap[0] * dx, from[1] + gap[0] * dy];
             let q = [from[0] + gap[1] * dx, from[1] + gap[1] * dy];
             if !w.range_frontier
-                && !w.rule_lifted
+                && w.lift != Lift::Lifted
                 && let Some(len) = below_rule(&self.sensor, self.views[view].at, p, q)
             {
                 self.skipped.below_rule += 1;
@@ -682,7 +703,8 @@ impl Known {
     /// rule. This looks at the frontier of everything seen (the boundary of the union of the
     /// views' regions that lies on their windows) and opens again the parts the rule closed
     /// along every chain of it at least `min_window` long; the rule is then lifted for their
-    /// windows, so each window is reopened at most once and the exploration ends. Returns
+    /// windows until a scan is taken for one of their parts, so each window is reopened at
+    /// most once, visited at most once under the lift, and the exploration ends. Returns
     /// whether any part was opened.
     pub(super) fn reopen_wide_openings(&mut self) -> bool {
         let need = self.sensor.min_window_at(0.0);
@@ -692,7 +714,7 @@ impl Known {
         if !self
             .views
             .iter()
-            .any(|v| v.windows.iter().any(|w| !w.ruled.is_empty() && !w.rule_lifted))
+            .any(|v| v.windows.iter().any(|w| !w.ruled.is_empty() && w.lift == Lift::Never))
         {
             return false;
         }
@@ -755,13 +777,13 @@ impl Known {
         let mut any = false;
         for (vi, k, t) in reopen {
             let w = &mut self.views[vi].windows[k];
-            if w.rule_lifted {
+            if w.lift != Lift::Never {
                 continue;
             }
             let Some(&gap) = w.ruled.iter().find(|g| g[0] <= t && t <= g[1]) else { continue };
             w.covered = uncover(&w.covered, gap);
             w.ruled.retain(|g| *g != gap);
-            w.rule_lifted = true;
+            w.lift = Lift::Lifted;
             w.checked = 0;
             let len = (gap[1] - gap[0]) * (w.to[0] - w.from[0]).hypot(w.to[1] - w.from[1]);
             self.views[vi].explored = false;
@@ -1667,6 +1689,36 @@ mod tests {
         let mut k = corridor_views(0.3);
         assert!(all_targets(&mut k).is_empty());
         assert!(!k.reopen_wide_openings());
+    }
+
+    #[test]
+    fn a_reopened_window_is_judged_by_the_rule_again_after_its_scan() {
+        use crate::algorithm::visibility::Visibility;
+        use crate::geometry::Domain;
+        // The door's reopened part, split by a cover in its middle into two parts under the
+        // rule (as noisy scans' regions split one): the trip goes to the first; once it is
+        // scanned, the opening was visited and the second is closed by the rule, not a trip.
+        let (mut k, ring) = corridor_views_and_walls(0.6);
+        assert!(all_targets(&mut k).is_empty());
+        assert!(k.reopen_wide_openings());
+        let t = all_targets(&mut k).remove(0);
+        let (v, w, [a, b]) = (t.view, t.window, t.gap);
+        let win = &mut k.views[v].windows[w];
+        win.covered.push([a + 0.4 * (b - a), a + 0.6 * (b - a)]);
+        cover::merge(&mut win.covered);
+        let first = k.window_target(v, w).expect("the part before the cover").0;
+        assert!(first.gap[1] <= a + 0.4 * (b - a) + 1e-12, "{:?}", first.gap);
+        let before = k.skipped.below_rule;
+        // The scan for it, from where nothing beyond the door is seen (so its region covers
+        // no part of the window).
+        let vis = Visibility::new(Domain::new(ring, vec![]).unwrap()).unwrap();
+        k.pending = Some(first);
+        k.add(&PolygonObservation { at: [0.6, 1.0], region: vis.query([0.6, 1.0]).unwrap() });
+        assert!(k.window_target(v, w).is_none(), "the part after the cover is a trip");
+        assert_eq!(k.skipped.below_rule, before + 1);
+        // Never reopened a second time.
+        k.reopen_wide_openings();
+        assert!(k.window_target(v, w).is_none(), "reopened twice");
     }
 
     /// Whether the segment `a b` crosses the ring's edges only where it touches them: the
