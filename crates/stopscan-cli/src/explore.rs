@@ -162,24 +162,6 @@ fn finish(
     }
 }
 
-/// The rows of what the window rule closed without a visit (with a rule), and why.
-fn sensor_rows(t: &mut Table, sensor: &stopscan::run_record::SensorInfo) {
-    if let (Some(n), Some(len)) = (sensor.windows_below_rule, sensor.windows_below_rule_length) {
-        t.row(vec![
-            "windows below the rule (count, m)".into(),
-            format!("{n}, {}", num(Some(len), 3)),
-        ]);
-    }
-    for (label, n) in [
-        ("window parts into small pockets", sensor.windows_into_small_pockets),
-        ("window parts with nothing unseen behind", sensor.windows_with_nothing_behind),
-    ] {
-        if let Some(n) = n {
-            t.row(vec![label.into(), n.to_string()]);
-        }
-    }
-}
-
 fn summary(w: &mut dyn Write, o: &RunRecord) -> std::io::Result<()> {
     let m = &o.metrics;
     let e = &o.environment;
@@ -239,7 +221,17 @@ fn summary(w: &mut dyn Write, o: &RunRecord) -> std::io::Result<()> {
     for (k, v) in rows {
         t.row(vec![k.into(), v]);
     }
-    sensor_rows(&mut t, &o.sensor);
+    // What the sensor rule closed without a visit (with a rule).
+    let sensor = &o.sensor;
+    if let (Some(n), Some(len)) = (sensor.windows_below_rule, sensor.windows_below_rule_length) {
+        t.row(vec![
+            "windows below the rule (count, m)".into(),
+            format!("{n}, {}", num(Some(len), 3)),
+        ]);
+    }
+    if let Some(n) = sensor.windows_into_small_pockets {
+        t.row(vec!["window parts into small pockets".into(), n.to_string()]);
+    }
     if let Some(r) = &o.robot {
         let robot: [(&str, String); 6] = [
             (

@@ -87,11 +87,6 @@ pub struct SensorInfo {
     /// no move failed).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub windows_dropped_by_failed_moves: Option<usize>,
-    /// Window parts closed without a visit because nothing unseen lies behind them (raw
-    /// scans, `cost_aware`: every sight line through the part from its viewpoint meets space
-    /// or walls already seen; absent: none).
-    #[serde(default, skip_serializing_if = "Option::is_none")]
-    pub windows_with_nothing_behind: Option<usize>,
 }
 
 impl SensorInfo {
@@ -111,8 +106,6 @@ impl SensorInfo {
             windows_into_small_pockets: sensor.has_pocket_term().then_some(skipped.small_pocket),
             windows_dropped_by_failed_moves: (skipped.move_failed > 0)
                 .then_some(skipped.move_failed),
-            windows_with_nothing_behind: (skipped.nothing_behind > 0)
-                .then_some(skipped.nothing_behind),
         }
     }
 }

@@ -49,12 +49,7 @@
 //!   window part and the run ends; it ends only when no window part worth a trip is open
 //!   (windows the sensor rule excludes, or that no viewpoint with the footprint's clearance
 //!   can be planned for, are counted in the run record). Every candidate sees its part
-//!   across the region, or stands beside it. On raw scans a part is also closed when nothing
-//!   unseen lies behind it: no ray through it from its own viewpoint meets an unknown cell
-//!   of the raster (walls only assumed count as unknown) before a wall seen (noisy regions
-//!   leave parts open where two scans place a wall apart; on the warehouse a fifth of the
-//!   trips saw nothing). The guarantee then holds up to the raster's cell: a crevice narrower
-//!   than a cell may be left, as the window rule leaves it.
+//!   across the region, or stands beside it.
 //!
 //! # Measured
 //! `bench floors` (the five shared maps and 12 offices, one run with the other strategies):
@@ -141,7 +136,7 @@
 use serde::{Deserialize, Serialize};
 
 use super::known::{self, Known, Target};
-use super::raster::{Assumed, Entry, Raster, STEP};
+use super::raster::{Entry, Raster, STEP};
 use super::{PolygonFeedback, PolygonStrategy};
 use crate::algorithm::visibility::BoundaryPiece;
 use crate::kernel::Point;
@@ -303,43 +298,7 @@ impl CostAware {
         let m = MARGIN * self.seen.scale;
         let limit = [[lo[0] - m, lo[1] - m], [hi[0] + m, hi[1] + m]];
         let rays = rays_through(z, gaps, range);
-        raster.unknown_area_seen(
-            z,
-            &rays,
-            range,
-            DEPTH * self.seen.scale,
-            Some(limit),
-            Assumed::Walls,
-        )
-    }
-
-    /// On raw scans: whether nothing unseen lies behind the window part `t` stands for: from
-    /// its own viewpoint, no ray through it meets an unknown cell of the raster (walls only
-    /// assumed count as unknown) before a wall seen, within the range and the box of what was
-    /// seen. With noisy regions the window's cover (the space just beyond it held by another
-    /// view) misses wherever two scans place a wall apart, and such parts were a fifth of the
-    /// trips on raw scans; with the exact sensor the cover is exact, and the raster, whose
-    /// cells are wider than a crevice, would close parts with a crevice behind them (on
-    /// willow-full at 10 cm, `cost_aware` saw 98.29% rather than 98.90%).
-    fn nothing_behind(&self, t: &Target) -> bool {
-        let (true, Some(raster), Some([lo, hi])) =
-            (self.known.relaxed(), &self.seen.raster, self.seen.bounds)
-        else {
-            return false;
-        };
-        let range = self.setup.sensor.range.unwrap_or(2.0 * self.seen.scale);
-        let m = MARGIN * self.seen.scale;
-        let limit = [[lo[0] - m, lo[1] - m], [hi[0] + m, hi[1] + m]];
-        let rays = rays_through(t.at, &[self.known.gap_of(t)], range);
-        let seen = raster.unknown_area_seen(
-            t.at,
-            &rays,
-            range,
-            DEPTH * self.seen.scale,
-            Some(limit),
-            Assumed::Unknown,
-        );
-        seen <= 0.0
+        raster.unknown_area_seen(z, &rays, range, DEPTH * self.seen.scale, Some(limit))
     }
 
     /// What the cost model charges for the trip from view `cur` to target `t` and its scan:
@@ -474,39 +433,25 @@ impl CostAware {
     /// within [`HORIZON`] of the soonest, the candidate with the most predicted area per
     /// second, driven to along the roads through safe cells when they lead there.
     fn plan(&mut self, cur: usize) -> Action<Point> {
-        self.sync_raster();
-        // Every open window part, by view, once the parts with nothing behind are closed.
-        let open = loop {
-            let mut open: Vec<(usize, Vec<Target>)> = Vec::new();
-            for v in 0..self.known.views.len() {
-                if self.known.views[v].explored {
-                    continue;
-                }
-                let targets: Vec<Target> = (0..self.known.views[v].windows_len())
-                    .filter_map(|k| self.known.window_target(v, k).map(|t| t.0))
-                    .collect();
-                if targets.is_empty() {
-                    self.known.views[v].explored = true;
-                } else {
-                    open.push((v, targets));
-                }
+        // Every open window part, by view.
+        let mut open: Vec<(usize, Vec<Target>)> = Vec::new();
+        for v in 0..self.known.views.len() {
+            if self.known.views[v].explored {
+                continue;
             }
-            let empty: Vec<Target> = open
-                .iter()
-                .flat_map(|(_, ts)| ts.iter())
-                .filter(|t| self.nothing_behind(t))
-                .cloned()
+            let targets: Vec<Target> = (0..self.known.views[v].windows_len())
+                .filter_map(|k| self.known.window_target(v, k).map(|t| t.0))
                 .collect();
-            if empty.is_empty() {
-                break open;
+            if targets.is_empty() {
+                self.known.views[v].explored = true;
+            } else {
+                open.push((v, targets));
             }
-            for t in &empty {
-                self.known.close_nothing_behind(t);
-            }
-        };
+        }
         if open.is_empty() {
             return Action::Done;
         }
+        self.sync_raster();
         let roads = self.roads(cur);
         if roads.is_some() {
             self.known.update_seen();
@@ -672,42 +617,5 @@ mod tests {
             BoundaryPiece::Partial { from: [1.0, 3.0], to: [0.0, 3.0], edge: e },
         ];
         assert_eq!(assumed_walls(&pieces, 2.0), vec![([1.0, 3.0], [3.0, 3.0])]);
-    }
-
-    #[test]
-    fn a_window_part_has_nothing_behind_once_the_space_behind_it_is_seen() {
-        use crate::algorithm::visibility::Visibility;
-        use crate::geometry::Domain;
-        use crate::protocol::polygon::{PolygonObservation, Sensor};
-        // A 10 m room with a 1 m pillar, scanned from two lower corners: behind the pillar a
-        // triangle stays unseen, and the first view's windows there open onto it.
-        let room = vec![[0.0, 0.0], [10.0, 0.0], [10.0, 10.0], [0.0, 10.0]];
-        let pillar = vec![[4.5, 4.5], [4.5, 5.5], [5.5, 5.5], [5.5, 4.5]];
-        let vis = Visibility::new(Domain::new(room, vec![pillar]).unwrap()).unwrap();
-        let scan = |at: Point| PolygonObservation { at, region: vis.query(at).unwrap() };
-        let run = |wall_tolerance: f64| {
-            let sensor = Sensor { wall_tolerance, ..Sensor::default() };
-            let mut ca = CostAware::for_robot(&RobotSetup { sensor, ..RobotSetup::default() });
-            ca.known.add(&scan([1.0, 1.0]));
-            ca.known.add(&scan([9.0, 1.0]));
-            ca.sync_raster();
-            let targets: Vec<Target> = (0..ca.known.views[0].windows_len())
-                .filter_map(|k| ca.known.window_target(0, k).map(|t| t.0))
-                .collect();
-            assert!(!targets.is_empty());
-            let before: Vec<bool> = targets.iter().map(|t| ca.nothing_behind(t)).collect();
-            // A scan from above the pillar sees the triangle: nothing unseen is left.
-            ca.known.add(&scan([5.0, 9.5]));
-            ca.sync_raster();
-            let after: Vec<bool> = targets.iter().map(|t| ca.nothing_behind(t)).collect();
-            (before, after)
-        };
-        // On raw scans (a wall tolerance): open before, closed once the space is seen.
-        let (before, after) = run(0.05);
-        assert!(before.iter().all(|&b| !b), "{before:?}");
-        assert!(after.iter().all(|&b| b), "{after:?}");
-        // With the exact sensor the window's own cover decides, never the raster.
-        let (before, after) = run(0.0);
-        assert!(before.iter().chain(&after).all(|&b| !b));
     }
 }

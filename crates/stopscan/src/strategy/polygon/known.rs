@@ -241,11 +241,6 @@ pub struct Skipped {
     /// planned for them (a move failure).
     #[serde(default)]
     pub move_failed: usize,
-    /// Window parts behind which nothing unseen lies: from the part's own viewpoint, every
-    /// sight line through it meets only space the scans saw, or a wall they saw, within the
-    /// sensor's range (`cost_aware`, which keeps a raster of what was seen).
-    #[serde(default)]
-    pub nothing_behind: usize,
 }
 
 impl View {
@@ -1108,12 +1103,6 @@ impl Known {
     /// tried again, so every scan makes progress and the exploration ends.
     fn handled(&mut self, t: &Target) {
         self.close(t.view, t.window, t.gap);
-    }
-
-    /// Closes the window part `t` stands for without a visit: nothing unseen lies behind it.
-    pub(super) fn close_nothing_behind(&mut self, t: &Target) {
-        self.skipped.nothing_behind += 1;
-        self.handled(t);
     }
 
     /// Counts the part `gap` of window `k` of `view` as covered; returns the window.

@@ -603,15 +603,6 @@ mod runs {
     }
 }
 
-/// How [`Raster::unknown_area_seen`] reads [`ASSUMED`] walls.
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub(super) enum Assumed {
-    /// As walls: the prediction of a scan's gain.
-    Walls,
-    /// As unknown space: whether anything unseen may lie behind a window.
-    Unknown,
-}
-
 impl Raster {
     /// The area of unknown space seen from `z` along the rays whose angles `rays` marks
     /// (`rays[k]`: the ray at `k · 2π / rays.len()`), each out to `range` and through at most
@@ -626,7 +617,6 @@ impl Raster {
         range: f64,
         depth: f64,
         limit: Option<[Point; 2]>,
-        assumed: Assumed,
     ) -> f64 {
         let limit = limit.map(|[lo, hi]| [self.cell_of(lo), self.cell_of(hi)]);
         let n = rays.len();
@@ -639,7 +629,7 @@ impl Raster {
         for (k, _) in rays.iter().enumerate().filter(|(_, on)| **on) {
             let theta = k as f64 * dtheta;
             let (dx, dy) = (theta.cos(), theta.sin());
-            area += dtheta * self.unknown_along(z, start, [dx, dy], (range, depth), limit, assumed);
+            area += dtheta * self.unknown_along(z, start, [dx, dy], (range, depth), limit);
         }
         area
     }
@@ -654,7 +644,6 @@ impl Raster {
         d: [f64; 2],
         (range, depth): (f64, f64),
         limit: Option<[[i64; 2]; 2]>,
-        assumed: Assumed,
     ) -> f64 {
         let res = self.res;
         let mut cell = start;
@@ -675,10 +664,7 @@ impl Raster {
         ];
         let (mut t, mut unknown, mut sum) = (0.0f64, 0.0f64, 0.0f64);
         loop {
-            let state = match self.state(cell) {
-                ASSUMED if assumed == Assumed::Unknown => UNKNOWN,
-                s => s,
-            };
+            let state = self.state(cell);
             if matches!(state, OCCUPIED | ASSUMED) && cell != start {
                 return sum;
             }
@@ -767,13 +753,13 @@ mod tests {
     fn an_unknown_plane_shows_a_disc_out_to_the_range_or_the_depth() {
         let r = Raster::new(0.1);
         let rays = vec![true; 720];
-        let disc = r.unknown_area_seen([0.03, 0.07], &rays, 3.0, 10.0, None, Assumed::Walls);
+        let disc = r.unknown_area_seen([0.03, 0.07], &rays, 3.0, 10.0, None);
         assert!((disc - std::f64::consts::PI * 9.0).abs() < 1e-9, "{disc}");
-        let shallow = r.unknown_area_seen([0.03, 0.07], &rays, 3.0, 2.0, None, Assumed::Walls);
+        let shallow = r.unknown_area_seen([0.03, 0.07], &rays, 3.0, 2.0, None);
         assert!((shallow - std::f64::consts::PI * 4.0).abs() < 1e-9, "{shallow}");
         // Half the rays: half the disc.
         let half: Vec<bool> = (0..720).map(|k| k < 360).collect();
-        let h = r.unknown_area_seen([0.0, 0.0], &half, 3.0, 10.0, None, Assumed::Walls);
+        let h = r.unknown_area_seen([0.0, 0.0], &half, 3.0, 10.0, None);
         assert!((h - std::f64::consts::PI * 4.5).abs() < 1e-9, "{h}");
     }
 
@@ -786,7 +772,7 @@ mod tests {
         // Beyond the window, in its wedge, within the range: |y| ≤ x, x ≥ 1, r ≤ 3.
         let wedge = |p: Point| p[0] >= 1.0 && p[1].abs() <= p[0] && p[0].hypot(p[1]) <= 3.0;
         let want = area_where(0.005, [0.0, -3.0], [3.0, 3.0], wedge);
-        let got = r.unknown_area_seen([0.0, 0.0], &rays, 3.0, 10.0, None, Assumed::Walls);
+        let got = r.unknown_area_seen([0.0, 0.0], &rays, 3.0, 10.0, None);
         // Cells a wall touches stop the rays that pass through them: near the window's ends,
         // within a cell of its corners (√2 from the viewpoint), about `res` radians on each
         // side, at most `res · R²` of area. The cells the window runs through are unknown and
@@ -798,25 +784,19 @@ mod tests {
         r.assume_wall([2.0, -3.0], [2.0, 3.0]);
         let near = |p: Point| wedge(p) && p[0] <= 2.0;
         let want = area_where(0.005, [0.0, -3.0], [3.0, 3.0], near);
-        let got = r.unknown_area_seen([0.0, 0.0], &rays, 3.0, 10.0, None, Assumed::Walls);
+        let got = r.unknown_area_seen([0.0, 0.0], &rays, 3.0, 10.0, None);
         assert!(close(got, want), "{got} against {want}");
         // So does the limit box, and the depth of unknown space a ray may cross.
-        let boxed = r.unknown_area_seen(
-            [0.0, 0.0],
-            &rays,
-            3.0,
-            10.0,
-            Some([[-1.5, -1.5], [1.5, 1.5]]),
-            Assumed::Walls,
-        );
+        let boxed =
+            r.unknown_area_seen([0.0, 0.0], &rays, 3.0, 10.0, Some([[-1.5, -1.5], [1.5, 1.5]]));
         // The box ends at the cell holding x = 1.5.
         let want = area_where(0.005, [0.0, -3.0], [3.0, 3.0], |p| near(p) && p[0] <= 1.55);
         assert!(close(boxed, want), "{boxed} against {want}");
-        let shallow = r.unknown_area_seen([0.0, 0.0], &rays, 3.0, 0.2, None, Assumed::Walls);
+        let shallow = r.unknown_area_seen([0.0, 0.0], &rays, 3.0, 0.2, None);
         assert!(shallow < got && shallow > 0.0);
         // A ray from inside the room that meets only walls sees nothing.
         let left: Vec<bool> = (0..720).map(|k| (270..450).contains(&k)).collect();
-        assert_eq!(r.unknown_area_seen([0.0, 0.0], &left, 3.0, 10.0, None, Assumed::Walls), 0.0);
+        assert_eq!(r.unknown_area_seen([0.0, 0.0], &left, 3.0, 10.0, None), 0.0);
     }
 
     #[test]
