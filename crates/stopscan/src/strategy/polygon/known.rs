@@ -503,10 +503,12 @@ impl Known {
         // The view the trip to the target started from: the target lies in its region.
         let parent = pending.as_ref().map(Target::base);
         self.failed_at = None;
-        if let Some(t) = pending.as_ref().filter(|t| !t.off_gap && !t.relocate) {
-            self.handled(t);
-        }
+        // A scan to place the robot again leaves its target's part open; any other is a
+        // visit of the target's window.
         if let Some(t) = pending.as_ref().filter(|t| !t.relocate) {
+            if !t.off_gap {
+                self.handled(t);
+            }
             let w = &mut self.views[t.view].windows[t.window];
             if w.lift == Lift::Lifted {
                 w.lift = Lift::Spent;
@@ -1058,7 +1060,7 @@ impl Known {
     /// Whether a scan was already taken at `z` (windows of two views on one ray give the
     /// same stepped-back point; a second scan there would see nothing new).
     fn stood_at(&self, z: Point) -> bool {
-        self.views.iter().any(|v| v.at == z)
+        self.view_at(z).is_some()
     }
 
     /// The index among `view`'s windows of the window that is its piece `piece`, if it is one
