@@ -135,7 +135,8 @@ pub struct RawScanInfo {
     pub mean_position_error: f64,
     /// The largest heading error at a stop after ICP, radians.
     pub max_heading_error: f64,
-    /// Stops where ICP kept odometry (too few pairs, a poor fit or an implausible correction).
+    /// Stops where ICP kept odometry (too few pairs, a poor fit, an implausible correction, or
+    /// returns beyond walls already mapped).
     pub icp_fallbacks: usize,
     /// Stops where the walls left a direction unconstrained (odometry kept along it).
     pub icp_degenerate: usize,

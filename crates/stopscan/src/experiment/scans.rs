@@ -94,7 +94,7 @@ pub fn scan_pairs(
         ingest_s += t.elapsed().as_secs_f64() / 2.0;
         let mut map = WallMap::new();
         map.extend(&ga.walls);
-        map.extend(&ga.bridges);
+        map.extend_bridges(&ga.bridges);
         let (r, phi): (f64, f64) =
             (max_shift * rng.random::<f64>().sqrt(), rng.random_range(0.0..std::f64::consts::TAU));
         let guess = Pose {

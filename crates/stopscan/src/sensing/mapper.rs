@@ -121,8 +121,10 @@ const REBUILD_TURN: f64 = 0.0005;
 /// One stop, kept so that later scans can be matched to it and its walls moved with it.
 #[derive(Debug, Clone)]
 struct Kept {
-    /// Its walls and bridges, in its scanner's frame.
+    /// Its walls, in its scanner's frame.
     walls: Vec<[Point; 2]>,
+    /// Its bridges (gaps between returns on one wall line), in its scanner's frame.
+    bridges: Vec<[Point; 2]>,
     /// The same, indexed for matching.
     local: WallMap,
     /// Whether it was aligned: a scan ICP could not align stays out of the map.
@@ -200,9 +202,9 @@ impl Mapper {
             .then(|| icp::align(&local.points, odometry, Some(prior), &self.map, &icp));
         let aligned = alignment.as_ref().is_none_or(|a| a.fallback.is_none());
         let initial = alignment.as_ref().map_or(*odometry, |a| a.pose);
-        let walls: Vec<[Point; 2]> = local.walls.iter().chain(&local.bridges).copied().collect();
         let mut own = WallMap::new();
-        own.extend(&walls);
+        own.extend(&local.walls);
+        own.extend_bridges(&local.bridges);
         // The farthest return: how far the scan reaches.
         let far = local.points.iter().map(|q| q[0].hypot(q[1])).fold(0.0, f64::max);
         let k = self.graph.add_node(initial);
@@ -234,7 +236,8 @@ impl Mapper {
         self.graph.optimize(GRAPH_STEPS);
         let estimate = self.graph.poses()[k];
         self.kept.push(Kept {
-            walls,
+            walls: local.walls,
+            bridges: local.bridges,
             local: own,
             aligned,
             reach: far,
@@ -345,19 +348,22 @@ impl Mapper {
                 && ((s.placed.x - p.x).hypot(s.placed.y - p.y) > REBUILD
                     || wrap(s.placed.theta - p.theta).abs() > REBUILD_TURN)
         });
-        let placed = |s: &Kept, at: &Pose| -> Vec<[Point; 2]> {
-            s.walls.iter().map(|w| [at.apply(w[0]), at.apply(w[1])]).collect()
+        let place = |map: &mut WallMap, s: &Kept, at: &Pose| {
+            let placed = |w: &[[Point; 2]]| -> Vec<[Point; 2]> {
+                w.iter().map(|w| [at.apply(w[0]), at.apply(w[1])]).collect()
+            };
+            map.extend_unseen(&placed(&s.walls), &placed(&s.bridges), MAP_PIECE, MAP_SAME_WALL);
         };
         if moved {
             self.map = WallMap::new();
             for (s, p) in self.kept.iter_mut().zip(poses) {
                 if s.aligned {
                     s.placed = *p;
-                    self.map.extend_unseen(&placed(s, p), MAP_PIECE, MAP_SAME_WALL);
+                    place(&mut self.map, s, p);
                 }
             }
         } else if let Some(s) = self.kept.last().filter(|s| s.aligned) {
-            self.map.extend_unseen(&placed(s, &s.placed), MAP_PIECE, MAP_SAME_WALL);
+            place(&mut self.map, s, &s.placed);
         }
     }
 }
