@@ -87,6 +87,10 @@ pub struct SensorInfo {
     /// no move failed).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub windows_dropped_by_failed_moves: Option<usize>,
+    /// Window parts handled without a trip because a scan had already stood at, or been asked
+    /// for at, the viewpoint planned for them (absent: none).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub windows_looked_at_from_their_viewpoint: Option<usize>,
 }
 
 impl SensorInfo {
@@ -106,6 +110,8 @@ impl SensorInfo {
             windows_into_small_pockets: sensor.has_pocket_term().then_some(skipped.small_pocket),
             windows_dropped_by_failed_moves: (skipped.move_failed > 0)
                 .then_some(skipped.move_failed),
+            windows_looked_at_from_their_viewpoint: (skipped.looked_from > 0)
+                .then_some(skipped.looked_from),
         }
     }
 }

@@ -235,10 +235,15 @@ fn moves_that_keep_failing_at_one_place_are_followed_by_a_scan_there() {
     let mut fb: PolygonFeedback = Feedback::Start { at: here };
     let (mut blocked, mut scans): (Option<Point>, usize) = (None, 0);
     let (mut failures, mut relocations, mut done) = (0, 0, false);
+    let mut placed_again = false;
     for _ in 0..2_000 {
         let after_failure = matches!(fb, Feedback::MoveFailed { .. });
         match s.act(&fb) {
             Action::Scan => {
+                // A scan that placed the robot again and did not cure the failures is not
+                // repeated before a scan for a target: it would see the same.
+                assert!(!(after_failure && placed_again), "two scans in a row to place the robot");
+                placed_again = after_failure;
                 relocations += usize::from(after_failure);
                 scans += 1;
                 fb = scan(here);
