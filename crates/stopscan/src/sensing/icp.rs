@@ -795,14 +795,19 @@ mod tests {
             .count()
     }
 
+    /// The room without its pillar, and its wall map: every return sampled in it is seen.
+    fn bare_room() -> (Vec<[Point; 2]>, WallMap) {
+        let room = room_walls()[..4].to_vec();
+        let mut map = WallMap::new();
+        map.extend(&room);
+        (room, map)
+    }
+
     #[test]
     fn a_scan_where_it_was_taken_sees_through_no_wall() {
-        // The room without its pillar: every return sampled is seen.
-        let room = &room_walls()[..4];
-        let mut map = WallMap::new();
-        map.extend(room);
+        let (room, map) = bare_room();
         let truth = Pose { x: 2.0, y: 1.5, theta: 0.4 };
-        let pts = sample(room, &truth, 0.05);
+        let pts = sample(&room, &truth, 0.05);
         let at = |p: &Pose| pts.iter().map(|&q| p.apply(q)).collect::<Vec<_>>();
         assert_eq!(map.crossings(truth.at(), at(&truth), 0.1), 0);
         // Slid 0.4 m to the right: the returns of the right wall (5 m long, every 5 cm) lie
@@ -819,11 +824,9 @@ mod tests {
         // The room is mapped; the scan holds its walls (every 0.2 m) and returns 4 m beyond
         // its right wall, which no scan taken inside the room could have. Beyond-wall returns
         // past half the pairs reject the alignment; fewer leave it.
-        let room = &room_walls()[..4];
-        let mut map = WallMap::new();
-        map.extend(room);
+        let (room, map) = bare_room();
         let truth = Pose { x: 2.0, y: 1.5, theta: 0.0 };
-        let inside = sample(room, &truth, 0.2);
+        let inside = sample(&room, &truth, 0.2);
         let guess = Pose { x: 2.1, y: 1.45, theta: 0.02 };
         let beyond = |n: usize| {
             (0..n).map(move |i| [10.0, -1.2 + 3.6 * i as f64 / n as f64]).collect::<Vec<_>>()
