@@ -71,6 +71,21 @@ fn explore_trace_range_and_determinism() {
     assert!(String::from_utf8_lossy(&bad.stderr).contains("--range must be a positive"));
 }
 
+/// `-o /dev/stdout` pipes a file output on; a rename over it (or over `/dev/null`) would have
+/// replaced the device, as root, with a regular file.
+#[cfg(unix)]
+#[test]
+fn a_file_output_can_be_standard_output() {
+    let g = stopscan(&["generate", "spiral", "--size", "5", "-o", "/dev/stdout"]);
+    assert!(g.status.success(), "{}", String::from_utf8_lossy(&g.stderr));
+    // The GeoJSON first, then the summary line.
+    let mut values = serde_json::Deserializer::from_slice(&g.stdout).into_iter::<Value>();
+    let geojson = values.next().expect("GeoJSON on standard output").unwrap();
+    assert_eq!(geojson["type"], "Feature", "{geojson}");
+    let rest = String::from_utf8_lossy(&g.stdout[values.byte_offset()..]).into_owned();
+    assert!(rest.contains("/dev/stdout: 14 vertices"), "{rest}");
+}
+
 #[test]
 fn explore_and_generate() {
     let dir = temp("explore");

@@ -1,8 +1,10 @@
 //! Writing output files atomically: each file is written to a hidden temporary sibling
 //! (`.NAME.PID.tmp`) and renamed over its name, so that a crash never leaves a half-written
-//! file in place of a good one, and the temporary file is removed on every failure. Also the
-//! checks on output targets that run before any work: a file's directory must exist, an
-//! output directory is created one level deep.
+//! file in place of a good one, and the temporary file is removed on every failure. What is
+//! not a regular file (`/dev/null`, `/dev/stdout`, a FIFO) is written in place instead, since
+//! a rename would replace the device itself, and a symbolic link to a regular file stays a
+//! link: the file it leads to is replaced. Also the checks on output targets that run before
+//! any work: a file's directory must exist, an output directory is created one level deep.
 
 use std::io::Write;
 use std::path::{Path, PathBuf};
@@ -139,10 +141,37 @@ pub fn ensure_dir(path: &Path) -> Result<(), WriteError> {
         .map_err(|source| WriteError::CreateDir { path: path.to_path_buf(), source })
 }
 
+/// How a file output is written.
+#[derive(Debug, PartialEq)]
+enum Target {
+    /// Atomically, by renaming a temporary sibling over this path: the output's own path, or
+    /// the regular file its symbolic link leads to (so the link stays a link).
+    Replace(PathBuf),
+    /// In place, like a shell's `>`: the output is not a regular file (a device such as
+    /// `/dev/null`, a FIFO, a socket, a terminal), is reached through the kernel's `/dev` or
+    /// `/proc` (`/dev/stdout` may lead to a regular file, which a rename would detach from the
+    /// shell that opened it), or is a dangling link (written through, creating its file).
+    InPlace,
+}
+
+fn target(path: &Path) -> Target {
+    if path.starts_with("/dev") || path.starts_with("/proc") {
+        return Target::InPlace;
+    }
+    let link = std::fs::symlink_metadata(path).is_ok_and(|m| m.file_type().is_symlink());
+    match std::fs::metadata(path) {
+        Ok(m) if !m.is_file() => Target::InPlace,
+        Ok(_) if link => std::fs::canonicalize(path).map_or(Target::InPlace, Target::Replace),
+        Err(_) if link => Target::InPlace,
+        _ => Target::Replace(path.to_path_buf()),
+    }
+}
+
 /// Writes a file atomically: `write` fills a temporary sibling, which is then renamed over
 /// `path`. The temporary file is removed on every failure, and temporary files of processes
 /// that no longer run are removed first. Not fsync'ed: a power cut may lose the newest write,
-/// never mix two.
+/// never mix two. A path that is not a regular file (`/dev/null`, `/dev/stdout`, a FIFO) is
+/// written in place, and a symbolic link's file is replaced, not the link (see the module).
 ///
 /// # Errors
 /// [`WriteError`] naming `path`: its directory is missing, or writing failed.
@@ -151,18 +180,33 @@ pub fn write(
     write: impl FnOnce(&mut dyn Write) -> std::io::Result<()>,
 ) -> Result<(), WriteError> {
     check_file(path)?;
-    remove_stale_temps(path);
-    let tmp = temp_sibling(path, std::process::id())
+    let failed = |source| WriteError::Io { path: path.to_path_buf(), source };
+    let real = match target(path) {
+        Target::Replace(real) => real,
+        Target::InPlace => {
+            return std::fs::File::create(path).and_then(|f| fill(f, write)).map_err(failed);
+        }
+    };
+    remove_stale_temps(&real);
+    let tmp = temp_sibling(&real, std::process::id())
         .ok_or_else(|| WriteError::NotAFileName(path.to_path_buf()))?;
     let mut guard = TempGuard(Some(tmp.clone()));
-    let io = (|| -> std::io::Result<()> {
-        let mut w = std::io::BufWriter::new(std::fs::File::create(&tmp)?);
-        write(&mut w)?;
-        w.into_inner().map_err(std::io::IntoInnerError::into_error)?;
-        std::fs::rename(&tmp, path)
-    })();
-    io.map_err(|source| WriteError::Io { path: path.to_path_buf(), source })?;
+    std::fs::File::create(&tmp)
+        .and_then(|f| fill(f, write))
+        .and_then(|()| std::fs::rename(&tmp, &real))
+        .map_err(failed)?;
     guard.0 = None;
+    Ok(())
+}
+
+/// Runs `write` on `file` through a buffer, and flushes it.
+fn fill(
+    file: std::fs::File,
+    write: impl FnOnce(&mut dyn Write) -> std::io::Result<()>,
+) -> std::io::Result<()> {
+    let mut w = std::io::BufWriter::new(file);
+    write(&mut w)?;
+    w.into_inner().map_err(std::io::IntoInnerError::into_error)?;
     Ok(())
 }
 
@@ -270,6 +314,56 @@ mod tests {
         assert!(dir.join("a").is_dir());
         write_bytes(&dir.join("f"), b"").unwrap();
         assert!(matches!(ensure_dir(&dir.join("f")), Err(WriteError::NotADirectory(_))));
+    }
+
+    /// `/dev/null`'s own kind of file, without touching it: a FIFO is not a regular file
+    /// either, and a rename over it would replace it just as it replaced `/dev/null` once
+    /// (when run as root, `-o /dev/null` made `/dev/null` a regular file, which then kept
+    /// whatever was written to it).
+    #[cfg(unix)]
+    #[test]
+    fn what_is_not_a_regular_file_is_written_in_place_not_replaced() {
+        use std::os::unix::fs::FileTypeExt;
+        let dir = temp("fifo");
+        let fifo = dir.join("pipe");
+        let made = std::process::Command::new("mkfifo").arg(&fifo).status();
+        if !made.is_ok_and(|s| s.success()) {
+            // No mkfifo (not a POSIX system after all): nothing to check.
+            return;
+        }
+        let reader = {
+            let fifo = fifo.clone();
+            // Opening a FIFO blocks until the other end is opened too.
+            std::thread::spawn(move || std::fs::read(fifo).unwrap())
+        };
+        write_bytes(&fifo, b"through the pipe").unwrap();
+        let kind = std::fs::symlink_metadata(&fifo).unwrap().file_type();
+        // Checked before joining: a replaced FIFO would leave the reader waiting.
+        assert!(kind.is_fifo(), "the FIFO was replaced by a {kind:?}");
+        assert_eq!(reader.join().unwrap(), b"through the pipe");
+        assert!(leftovers(&dir).is_empty());
+        assert_eq!(target(Path::new("/dev/null")), Target::InPlace);
+        assert_eq!(target(Path::new("/dev/stdout")), Target::InPlace);
+    }
+
+    #[cfg(unix)]
+    #[test]
+    fn a_symbolic_link_stays_a_link_and_its_file_is_replaced() {
+        let dir = temp("link");
+        let (real, link) = (dir.join("real.json"), dir.join("link.json"));
+        std::fs::create_dir(dir.join("sub")).unwrap();
+        write_bytes(&real, b"old").unwrap();
+        std::os::unix::fs::symlink(&real, &link).unwrap();
+        write_bytes(&link, b"new").unwrap();
+        assert!(std::fs::symlink_metadata(&link).unwrap().file_type().is_symlink());
+        assert_eq!(std::fs::read(&real).unwrap(), b"new");
+        assert!(leftovers(&dir).is_empty());
+        // A dangling link is written through, creating its file.
+        let (later, dangling) = (dir.join("sub/later.json"), dir.join("dangling.json"));
+        std::os::unix::fs::symlink(&later, &dangling).unwrap();
+        write_bytes(&dangling, b"made").unwrap();
+        assert!(std::fs::symlink_metadata(&dangling).unwrap().file_type().is_symlink());
+        assert_eq!(std::fs::read(&later).unwrap(), b"made");
     }
 
     #[test]
