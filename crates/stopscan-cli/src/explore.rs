@@ -12,7 +12,7 @@ use stopscan::pipeline::explore::{Exploration, ExploreError, ExploreOptions};
 use stopscan::pipeline::sweep::SweepEvent;
 use stopscan::protocol::CostModel;
 use stopscan::protocol::polygon::Footprint;
-use stopscan::run_record::RunRecord;
+use stopscan::run_record::{RunRecord, SensorInfo};
 
 use crate::cli::{ExploreArgs, Format, Global, parse_point};
 use crate::output::{Spinner, Table, flag_error, num};
@@ -162,6 +162,22 @@ fn finish(
     }
 }
 
+/// The rows of what the sensor rule closed.
+fn sensor_rows(t: &mut Table, sensor: &SensorInfo) {
+    if let (Some(n), Some(len)) = (sensor.windows_below_rule, sensor.windows_below_rule_length) {
+        t.row(vec![
+            "windows below the rule (count, m)".into(),
+            format!("{n}, {}", num(Some(len), 3)),
+        ]);
+    }
+    if let Some(n) = sensor.windows_into_small_pockets {
+        t.row(vec!["window parts into small pockets".into(), n.to_string()]);
+    }
+    if let Some(n) = sensor.windows_into_walled_pockets {
+        t.row(vec!["window parts into small pockets behind walls".into(), n.to_string()]);
+    }
+}
+
 fn summary(w: &mut dyn Write, o: &RunRecord) -> std::io::Result<()> {
     let m = &o.metrics;
     let e = &o.environment;
@@ -222,16 +238,7 @@ fn summary(w: &mut dyn Write, o: &RunRecord) -> std::io::Result<()> {
         t.row(vec![k.into(), v]);
     }
     // What the sensor rule closed without a visit (with a rule).
-    let sensor = &o.sensor;
-    if let (Some(n), Some(len)) = (sensor.windows_below_rule, sensor.windows_below_rule_length) {
-        t.row(vec![
-            "windows below the rule (count, m)".into(),
-            format!("{n}, {}", num(Some(len), 3)),
-        ]);
-    }
-    if let Some(n) = sensor.windows_into_small_pockets {
-        t.row(vec!["window parts into small pockets".into(), n.to_string()]);
-    }
+    sensor_rows(&mut t, &o.sensor);
     if let Some(r) = &o.robot {
         let robot: [(&str, String); 6] = [
             (

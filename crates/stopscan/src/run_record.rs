@@ -91,6 +91,11 @@ pub struct SensorInfo {
     /// for at, the viewpoint planned for them (absent: none).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub windows_looked_at_from_their_viewpoint: Option<usize>,
+    /// Window parts closed without a visit because they open onto a pocket enclosed by walls
+    /// seen and space seen, smaller than a quarter of the pocket limit (`cost_aware` only;
+    /// absent: none).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub windows_into_walled_pockets: Option<usize>,
 }
 
 impl SensorInfo {
@@ -112,6 +117,8 @@ impl SensorInfo {
                 .then_some(skipped.move_failed),
             windows_looked_at_from_their_viewpoint: (skipped.looked_from > 0)
                 .then_some(skipped.looked_from),
+            windows_into_walled_pockets: (skipped.walled_pocket > 0)
+                .then_some(skipped.walled_pocket),
         }
     }
 }

@@ -443,6 +443,51 @@ fn raw_scans_from_a_simulated_lidar() {
     );
 }
 
+/// On raw scans `cost_aware` closes window parts that open onto small pockets behind walls
+/// seen (noise left a window a few centimetres in front of a wall another scan saw), counts
+/// them in the record and the table, and still sees the map.
+#[test]
+fn cost_aware_closes_slivers_in_front_of_walls_seen_and_says_so() {
+    let map = common::fixture("ros-maps/depot.yaml");
+    let dir = temp("walled-pockets");
+    std::fs::create_dir_all(&dir).unwrap();
+    let out = dir.join("run.json");
+    let printed = stopscan(&[
+        "--seed",
+        "5",
+        "explore",
+        "--env",
+        &map,
+        "--strategy",
+        "cost_aware",
+        "--robot-radius",
+        "0.2",
+        "--sensor",
+        "lidar:beams=720,sigma=0.02,dropout=0.01",
+        "--odometry-drift",
+        "0.01",
+        "--optimum-seconds",
+        "0",
+        "--bounds-seconds",
+        "0",
+        "--greedy-max-vertices",
+        "0",
+        "--out",
+        out.to_str().unwrap(),
+    ]);
+    assert!(printed.status.success(), "{}", String::from_utf8_lossy(&printed.stderr));
+    let r: Value = serde_json::from_slice(&std::fs::read(&out).unwrap()).unwrap();
+    let n = r["sensor"]["windows_into_walled_pockets"].as_u64().unwrap_or(0);
+    assert!(n >= 1, "{}", r["sensor"]);
+    let text = String::from_utf8(printed.stdout).unwrap();
+    let row = text
+        .lines()
+        .find(|l| l.starts_with("window parts into small pockets behind walls"))
+        .unwrap_or_else(|| panic!("{text}"));
+    assert_eq!(row.split_whitespace().last(), Some(n.to_string().as_str()), "{text}");
+    assert!(f(&r["robot"], "coverage_of_reachable") > 0.99, "{}", r["robot"]);
+}
+
 #[test]
 fn raw_scan_flags_are_checked() {
     let map = common::fixture("office.geojson");

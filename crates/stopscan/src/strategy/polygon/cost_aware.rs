@@ -50,6 +50,14 @@
 //!   (windows the sensor rule excludes, or that no viewpoint with the footprint's clearance
 //!   can be planned for, are counted in the run record). Every candidate sees its part
 //!   across the region, or stands beside it.
+//! - **Pockets behind walls seen.** A part that opens onto a pocket of the raster (unknown
+//!   cells, four-connected, enclosed by cells seen free and walls seen) smaller than a quarter
+//!   of the sensor rule's pocket limit is closed without a visit, and counted
+//!   (`windows_into_walled_pockets`). The rule's own pockets are holes in the union of the
+//!   views' regions, which walls do not bound; on raw scans, noise leaves window parts a few
+//!   centimetres in front of a wall another scan saw, each of which cost a scan. Over 120
+//!   raw-scan runs (office, depot, warehouse, seeds 1 to 40) the mission time fell 4.5% and
+//!   the scans 3.5%, no run's coverage fell below 99%, and `bench floors` is unchanged.
 //!
 //! # Measured
 //! `bench floors` (the five shared maps and 12 offices, one run with the other strategies):
@@ -166,6 +174,14 @@ const RAYS: usize = 720;
 /// run on out of sight (2 m; 1 m and 3 m did no better).
 const CELL: f64 = 1.0 / 200.0;
 const DEPTH: f64 = 0.4;
+/// The share of the sensor rule's pocket limit below which a window part that opens onto a
+/// pocket of the raster is closed without a visit. Walls seen bound such a pocket, as they do
+/// not bound the rule's own pockets (holes in the union of the views' regions): on raw scans,
+/// the sliver between a window and the wall another scan saw a few centimetres behind it,
+/// which cost a scan each (`bench floors` has no such slivers and is unchanged). At the whole
+/// limit the space behind a desk (1–2 m²) was closed too: on the built-in office, raw scans,
+/// seed 21, coverage fell from 99.62% to 98.62%.
+const WALLED_POCKET_SHARE: f64 = 0.25;
 const MARGIN: f64 = 0.025;
 const ASSUMED_WALL: f64 = 0.1;
 
@@ -287,6 +303,21 @@ impl CostAware {
             });
         }
         self.seen.views = n;
+    }
+
+    /// The first open part of window `k` of view `v` worth a trip: a part that opens onto a
+    /// pocket of the raster (unknown cells enclosed by walls seen and space seen) smaller
+    /// than `limit` square metres is closed as it comes ([`WALLED_POCKET_SHARE`]).
+    fn worth_a_trip(&mut self, v: usize, k: usize, limit: f64) -> Option<Target> {
+        loop {
+            let (t, _) = self.known.window_target(v, k)?;
+            let [p, q] = self.known.gap_of(&t);
+            let raster = self.seen.raster.as_ref();
+            if limit <= 0.0 || raster.and_then(|r| r.pocket_behind(p, q, limit)).is_none() {
+                return Some(t);
+            }
+            self.known.close_as_walled_pocket(&t);
+        }
     }
 
     /// The predicted new area of a scan at `z`: unknown space seen along rays through the open
@@ -435,12 +466,14 @@ impl CostAware {
     fn plan(&mut self, cur: usize) -> Action<Point> {
         // Every open window part, by view.
         let mut open: Vec<(usize, Vec<Target>)> = Vec::new();
+        self.sync_raster();
+        let limit = WALLED_POCKET_SHARE * self.known.pocket_limit();
         for v in 0..self.known.views.len() {
             if self.known.views[v].explored {
                 continue;
             }
             let targets: Vec<Target> = (0..self.known.views[v].windows_len())
-                .filter_map(|k| self.known.window_target(v, k).map(|t| t.0))
+                .filter_map(|k| self.worth_a_trip(v, k, limit))
                 .collect();
             if targets.is_empty() {
                 self.known.views[v].explored = true;
@@ -451,7 +484,6 @@ impl CostAware {
         if open.is_empty() {
             return Action::Done;
         }
-        self.sync_raster();
         let roads = self.roads(cur);
         if roads.is_some() {
             self.known.update_seen();

@@ -252,6 +252,11 @@ pub struct Skipped {
     /// along one wall may share the point clear of it): handled as after a scan there.
     #[serde(default)]
     pub looked_from: usize,
+    /// Window parts that open onto a pocket of unseen space enclosed by walls seen and space
+    /// seen, smaller than a quarter of the sensor rule's pocket limit (`cost_aware`, on its
+    /// raster of what was seen).
+    #[serde(default)]
+    pub walled_pocket: usize,
 }
 
 impl View {
@@ -1147,6 +1152,23 @@ impl Known {
     /// tried again, so every scan makes progress and the exploration ends.
     fn handled(&mut self, t: &Target) {
         self.close(t.view, t.window, t.gap);
+    }
+
+    /// Closes the part `t` stands for without a scan: it opens onto a small pocket that a
+    /// strategy found with walls seen as its bounds ([`Skipped::walled_pocket`]).
+    pub(super) fn close_as_walled_pocket(&mut self, t: &Target) {
+        self.skipped.walled_pocket += 1;
+        self.handled(t);
+    }
+
+    /// The sensor rule's pocket limit for what was seen so far, square metres (0 without
+    /// the rule's pocket term).
+    pub(super) fn pocket_limit(&mut self) -> f64 {
+        if !self.sensor.has_pocket_term() {
+            return 0.0;
+        }
+        self.update_seen();
+        self.sensor.pocket_limit(self.seen.area)
     }
 
     /// Counts the part `gap` of window `k` of `view` as covered; returns the window.

@@ -694,6 +694,39 @@ impl Raster {
 }
 
 impl Raster {
+    /// The area of the unknown space the segment `p q` opens onto, when it is a pocket: the
+    /// unknown cells (assumed walls are unknown space) its line touches, and those reached
+    /// from them through unknown cells (four neighbours), enclosed by cells seen free or
+    /// walls seen, covering at most `cap` square metres (0 when the line touches no unknown
+    /// cell: what it opens onto was seen). `None` when they cover more.
+    pub(super) fn pocket_behind(&self, p: Point, q: Point, cap: f64) -> Option<f64> {
+        let most = (cap / (self.res * self.res)).floor();
+        if most.is_nan() || most < 0.0 {
+            return None;
+        }
+        let most = most as usize;
+        let open = |c: [i64; 2]| matches!(self.state(c), UNKNOWN | ASSUMED);
+        let mut reached = rustc_hash::FxHashSet::default();
+        let mut stack = Vec::new();
+        supercover(self.res, p, q, self.hair(), |c| {
+            if open(c) && reached.insert(c) {
+                stack.push(c);
+            }
+            reached.len() <= most
+        });
+        while let Some(c) = stack.pop() {
+            if reached.len() > most {
+                return None;
+            }
+            for n in [[c[0] + 1, c[1]], [c[0] - 1, c[1]], [c[0], c[1] + 1], [c[0], c[1] - 1]] {
+                if open(n) && reached.insert(n) {
+                    stack.push(n);
+                }
+            }
+        }
+        (reached.len() <= most).then_some(reached.len() as f64 * self.res * self.res)
+    }
+
     /// Marks the unknown cells along `a b` as [`ASSUMED`] walls.
     pub(super) fn assume_wall(&mut self, a: Point, b: Point) {
         let eps = self.hair();
@@ -797,6 +830,90 @@ mod tests {
         // A ray from inside the room that meets only walls sees nothing.
         let left: Vec<bool> = (0..720).map(|k| (270..450).contains(&k)).collect();
         assert_eq!(r.unknown_area_seen([0.0, 0.0], &left, 3.0, 10.0, None), 0.0);
+    }
+
+    /// A raster of `states` (row `j` of the grid at cells `(i, j)`, `0 ≤ i, j < 12`), cells
+    /// of 0.1 m; outside it, everything is unknown.
+    fn raster_of(states: &[u8]) -> Raster {
+        let mut r = Raster::new(0.1);
+        r.anchor = Some([0, 0]);
+        r.ensure([0, 0], [11, 11]);
+        for (k, &st) in states.iter().enumerate() {
+            let j = r.local([(k % 12) as i64, (k / 12) as i64]).unwrap();
+            r.cells[j] = st;
+        }
+        r
+    }
+
+    /// The pocket behind the cells `(col, from..=to)`, from the definition: the open cells
+    /// (unknown or assumed) among them and every open cell joined to them by a chain of open
+    /// cells side by side, found by growing the set until it stops changing. `None` when it
+    /// reaches the grid's edge (beyond it the unknown goes on) or holds more than `most`.
+    fn pocket_by_definition(
+        states: &[u8],
+        col: usize,
+        rows: (usize, usize),
+        most: usize,
+    ) -> Option<usize> {
+        let open = |i: usize, j: usize| matches!(states[j * 12 + i], UNKNOWN | ASSUMED);
+        let mut inside = [[false; 12]; 12];
+        for (j, cell) in inside[col].iter_mut().enumerate().take(rows.1 + 1).skip(rows.0) {
+            *cell = open(col, j);
+        }
+        loop {
+            let mut grew = false;
+            for i in 0..12 {
+                for j in 0..12 {
+                    let next = (i > 0 && inside[i - 1][j])
+                        || (i < 11 && inside[i + 1][j])
+                        || (j > 0 && inside[i][j - 1])
+                        || (j < 11 && inside[i][j + 1]);
+                    if !inside[i][j] && open(i, j) && next {
+                        inside[i][j] = true;
+                        grew = true;
+                    }
+                }
+            }
+            if !grew {
+                break;
+            }
+        }
+        let edge = (0..12).any(|k| inside[0][k] || inside[11][k] || inside[k][0] || inside[k][11]);
+        let n = inside.iter().flatten().filter(|&&b| b).count();
+        (!edge && n <= most).then_some(n)
+    }
+
+    proptest::proptest! {
+        #[test]
+        fn a_pocket_is_the_unknown_space_a_segment_opens_onto_when_walls_enclose_it(
+            cells in proptest::collection::vec(
+                proptest::prop_oneof![
+                    3 => proptest::strategy::Just(UNKNOWN),
+                    2 => proptest::strategy::Just(FREE),
+                    3 => proptest::strategy::Just(OCCUPIED),
+                    1 => proptest::strategy::Just(ASSUMED),
+                ],
+                144,
+            ),
+            col in 0usize..12,
+            a in 0usize..12,
+            b in 0usize..12,
+            most in 0usize..80,
+        ) {
+            let r = raster_of(&cells);
+            let (lo, hi) = (a.min(b), a.max(b));
+            // Through the cells' centres, so that the line touches exactly those cells.
+            let x = (col as f64 + 0.5) * 0.1;
+            let (p, q) = ([x, (lo as f64 + 0.5) * 0.1], [x, (hi as f64 + 0.5) * 0.1]);
+            let cap = (most as f64 + 0.5) * 0.01;
+            let got = r.pocket_behind(p, q, cap);
+            let want = pocket_by_definition(&cells, col, (lo, hi), most);
+            match (got, want) {
+                (Some(area), Some(n)) => proptest::prop_assert!((area - n as f64 * 0.01).abs() < 1e-9),
+                (None, None) => {}
+                _ => proptest::prop_assert!(false, "{got:?} against {want:?} cells"),
+            }
+        }
     }
 
     #[test]
