@@ -6,6 +6,9 @@ use serde::Serialize;
 
 use crate::cli::{Format, Global};
 
+/// The longest cell of a table's last column that sets its width (characters).
+const LONG_CELL: usize = 24;
+
 /// A plain aligned text table.
 pub(crate) struct Table {
     header: Vec<String>,
@@ -21,12 +24,19 @@ impl Table {
         self.rows.push(cells);
     }
 
+    /// Writes the table: the first column left-aligned, the others right-aligned. In the last
+    /// column a cell longer than [`LONG_CELL`] characters (a sentence, such as why a reference
+    /// was not computed) starts where the column starts and does not widen it, so that the
+    /// numbers stay beside their names.
     pub(crate) fn write(&self, w: &mut dyn Write) -> std::io::Result<()> {
         let n = self.header.len();
+        let long = |k: usize, c: &str| n > 1 && k == n - 1 && c.chars().count() > LONG_CELL;
         let mut width = vec![0; n];
         for r in std::iter::once(&self.header).chain(&self.rows) {
             for (k, c) in r.iter().enumerate().take(n) {
-                width[k] = width[k].max(c.chars().count());
+                if !long(k, c) {
+                    width[k] = width[k].max(c.chars().count());
+                }
             }
         }
         let line = |w: &mut dyn Write, r: &[String]| -> std::io::Result<()> {
@@ -35,7 +45,7 @@ impl Table {
                 .enumerate()
                 .map(|(k, c)| {
                     let pad = width[k].saturating_sub(c.chars().count());
-                    if k == 0 {
+                    if k == 0 || long(k, c) {
                         format!("{c}{}", " ".repeat(pad))
                     } else {
                         format!("{}{c}", " ".repeat(pad))
@@ -163,4 +173,26 @@ pub(crate) fn emit<T: Serialize>(
         stopscan::io::atomic::write_json(path, value)?;
     }
     Ok(())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn a_sentence_in_the_last_column_does_not_push_the_numbers_away() {
+        let mut t = Table::new(&["quantity", "value"]);
+        t.row(vec!["scans".into(), "44".into()]);
+        t.row(vec!["optimum".into(), "not attempted: 164 vertices, above the limit".into()]);
+        t.row(vec!["distance (m)".into(), "346.951".into()]);
+        let mut out = Vec::new();
+        t.write(&mut out).unwrap();
+        let text = String::from_utf8(out).unwrap();
+        let lines: Vec<&str> = text.lines().collect();
+        assert_eq!(lines[0], "quantity        value");
+        assert_eq!(lines[1], "------------  -------");
+        assert_eq!(lines[2], "scans              44");
+        assert_eq!(lines[3], "optimum       not attempted: 164 vertices, above the limit");
+        assert_eq!(lines[4], "distance (m)  346.951");
+    }
 }
