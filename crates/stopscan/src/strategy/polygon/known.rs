@@ -253,8 +253,8 @@ pub struct Skipped {
     #[serde(default)]
     pub looked_from: usize,
     /// Window parts that open onto a pocket of unseen space enclosed by walls seen and space
-    /// seen, smaller than a quarter of the sensor rule's pocket limit (`cost_aware`, on its
-    /// raster of what was seen).
+    /// seen, smaller than a quarter of the sensor rule's pocket limit (`cost_aware` on raw
+    /// scans, on its raster of what was seen).
     #[serde(default)]
     pub walled_pocket: usize,
 }
@@ -1161,10 +1161,10 @@ impl Known {
         self.handled(t);
     }
 
-    /// The sensor rule's pocket limit for what was seen so far, square metres (0 without
-    /// the rule's pocket term).
-    pub(super) fn pocket_limit(&mut self) -> f64 {
-        if !self.sensor.has_pocket_term() {
+    /// On raw scans (a wall tolerance above 0), the sensor rule's pocket limit for what was
+    /// seen so far, square metres; 0 with an exact sensor or without the rule's pocket term.
+    pub(super) fn pocket_limit_on_raw_scans(&mut self) -> f64 {
+        if !self.sensor.has_pocket_term() || self.sensor.wall_tolerance <= 0.0 {
             return 0.0;
         }
         self.update_seen();
