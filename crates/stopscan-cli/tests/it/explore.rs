@@ -452,34 +452,22 @@ fn cost_aware_closes_slivers_in_front_of_walls_seen_and_says_so() {
     let dir = temp("walled-pockets");
     std::fs::create_dir_all(&dir).unwrap();
     let out = dir.join("run.json");
-    let printed = stopscan(&[
-        "--seed",
-        "5",
-        "explore",
-        "--env",
-        &map,
-        "--strategy",
-        "cost_aware",
-        "--robot-radius",
-        "0.2",
-        "--sensor",
-        "lidar:beams=720,sigma=0.02,dropout=0.01",
-        "--odometry-drift",
-        "0.01",
-        "--optimum-seconds",
-        "0",
-        "--bounds-seconds",
-        "0",
-        "--greedy-max-vertices",
-        "0",
-        "--out",
-        out.to_str().unwrap(),
-    ]);
-    assert!(printed.status.success(), "{}", String::from_utf8_lossy(&printed.stderr));
-    let r: Value = serde_json::from_slice(&std::fs::read(&out).unwrap()).unwrap();
+    // `cost_aware` on depot with the flags `extra`: the table and the record.
+    let run = |extra: &[&str]| {
+        let mut args = vec!["--seed", "5", "explore", "--env", &map, "--strategy", "cost_aware"];
+        args.extend(["--robot-radius", "0.2", "--out", out.to_str().unwrap()]);
+        args.extend(["--optimum-seconds", "0", "--bounds-seconds", "0"]);
+        args.extend(["--greedy-max-vertices", "0"]);
+        args.extend(extra);
+        let printed = stopscan(&args);
+        assert!(printed.status.success(), "{}", String::from_utf8_lossy(&printed.stderr));
+        let r: Value = serde_json::from_slice(&std::fs::read(&out).unwrap()).unwrap();
+        (String::from_utf8(printed.stdout).unwrap(), r)
+    };
+    let (text, r) =
+        run(&["--sensor", "lidar:beams=720,sigma=0.02,dropout=0.01", "--odometry-drift", "0.01"]);
     let n = r["sensor"]["windows_into_walled_pockets"].as_u64().unwrap_or(0);
     assert!(n >= 1, "{}", r["sensor"]);
-    let text = String::from_utf8(printed.stdout).unwrap();
     let row = text
         .lines()
         .find(|l| l.starts_with("window parts into small pockets behind walls"))
@@ -487,27 +475,7 @@ fn cost_aware_closes_slivers_in_front_of_walls_seen_and_says_so() {
     assert_eq!(row.split_whitespace().last(), Some(n.to_string().as_str()), "{text}");
     assert!(f(&r["robot"], "coverage_of_reachable") > 0.99, "{}", r["robot"]);
     // With an exact sensor the rule is off (such pockets are real spaces there).
-    let exact = stopscan(&[
-        "explore",
-        "--env",
-        &map,
-        "--strategy",
-        "cost_aware",
-        "--robot-radius",
-        "0.2",
-        "--range",
-        "20",
-        "--optimum-seconds",
-        "0",
-        "--bounds-seconds",
-        "0",
-        "--greedy-max-vertices",
-        "0",
-        "--out",
-        out.to_str().unwrap(),
-    ]);
-    assert!(exact.status.success(), "{}", String::from_utf8_lossy(&exact.stderr));
-    let r: Value = serde_json::from_slice(&std::fs::read(&out).unwrap()).unwrap();
+    let (_, r) = run(&["--range", "20"]);
     assert!(r["sensor"]["windows_into_small_pockets"].is_u64(), "{}", r["sensor"]);
     assert!(r["sensor"].get("windows_into_walled_pockets").is_none(), "{}", r["sensor"]);
 }
