@@ -219,6 +219,15 @@ pub struct Sensor {
     pub wall_tolerance: f64,
 }
 
+/// How much farther apart than [`Sensor::wall_tolerance`] two scans may place one wall along
+/// a window that is a gap between returns on one wall line (a wall seen at a grazing angle),
+/// metres: twice the pose error a stop is allowed after alignment (0.1 m each), as the two
+/// scans are placed independently. A wall seen whole from elsewhere hides no opening,
+/// wherever odometry and alignment put it. On the warehouse from raw scans, a stop placed by
+/// odometry along an aisle put the outer wall 0.19 m from where well-aligned stops later saw
+/// it, and each gap of its grazing view of that wall cost a scan of its own.
+pub const LINE_POSE_ALLOWANCE: f64 = 0.2;
+
 impl Sensor {
     /// The shortest window worth a trip whose near end is `distance` metres away.
     pub fn min_window_at(&self, distance: f64) -> f64 {
@@ -274,8 +283,11 @@ impl Sensor {
         if self.wall_tolerance > 0.0 {
             format!(
                 "{windows}; a window part along which another scan saw a wall within {} m \
-                 (wall_tolerance: the same wall, placed apart by noise) is closed",
-                self.wall_tolerance
+                 (wall_tolerance: the same wall, placed apart by noise) is closed, within {} m \
+                 when the window is a gap between returns on one wall line (wall_tolerance + \
+                 {LINE_POSE_ALLOWANCE} m: the two scans' pose errors)",
+                self.wall_tolerance,
+                self.wall_tolerance + LINE_POSE_ALLOWANCE
             )
         } else {
             windows

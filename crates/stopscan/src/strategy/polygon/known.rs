@@ -84,6 +84,11 @@ struct Window {
     /// the exploration ends.
     #[serde(default)]
     no_junction: bool,
+    /// Raw scans: the window is a gap between returns on one wall line (a wall seen at a
+    /// grazing angle), not an occlusion ([`on_wall_line`]): a wall another scan saw along it
+    /// closes it within the wider [`Known::line_tolerance`].
+    #[serde(default)]
+    on_line: bool,
 }
 
 /// A next viewpoint and the part of a window it is for.
@@ -365,6 +370,14 @@ impl Known {
         self.sensor.wall_tolerance > 0.0
     }
 
+    /// How far apart two scans may place one wall along a window that is a gap on a wall
+    /// line (raw scans): the sensor's [`wall_tolerance`](Sensor::wall_tolerance) plus
+    /// [`LINE_POSE_ALLOWANCE`](crate::protocol::polygon::LINE_POSE_ALLOWANCE): the two scans' poses are each only as good as their
+    /// alignment, and a gap seen at a grazing angle is closed by the wall seen from nearer.
+    pub(super) fn line_tolerance(&self) -> f64 {
+        self.sensor.wall_tolerance + crate::protocol::polygon::LINE_POSE_ALLOWANCE
+    }
+
     /// The clearance planned moves keep near view `v` (0 for a point robot).
     pub(super) fn clearance(&self, v: usize) -> f64 {
         self.footprint.planning_clearance(magnitude(&self.views[v].polygon))
@@ -564,6 +577,8 @@ impl Known {
                         checked: 0,
                         range_frontier,
                         no_junction: false,
+                        on_line: sensor.wall_tolerance > 0.0
+                            && on_wall_line(&obs.region.boundary, piece, sensor.wall_tolerance),
                     })
                 }
                 _ => None,
@@ -616,7 +631,11 @@ impl Known {
         };
         if checked < n {
             let mut covered = std::mem::take(&mut self.views[view].windows[k].covered);
-            let tol = self.sensor.wall_tolerance;
+            let tol = if self.views[view].windows[k].on_line {
+                self.line_tolerance()
+            } else {
+                self.sensor.wall_tolerance
+            };
             for (j, v) in self.views.iter().enumerate().skip(checked) {
                 if j != view {
                     cover::side_cover(from, to, &v.polygon, v.bounds, &mut covered);
@@ -1414,6 +1433,30 @@ fn uncover(covered: &Intervals, gap: [f64; 2]) -> Intervals {
     out
 }
 
+/// Whether window piece `piece` of a raw scan's region is a gap between returns on one wall
+/// line: both its ends lie within `tol` of the line of the wall that the windows next to it
+/// lead to, before or after it (a chain of such gaps is a wall seen at a grazing angle). An
+/// occlusion's window runs from the occluding corner off the wall's line, and is not one.
+fn on_wall_line(pieces: &[BoundaryPiece], piece: usize, tol: f64) -> bool {
+    let BoundaryPiece::Window { from, to, .. } = pieces[piece] else { return false };
+    let n = pieces.len();
+    let side = |forward: bool| {
+        (1..n)
+            .map(|i| if forward { (piece + i) % n } else { (piece + n - i) % n })
+            .map(|j| &pieces[j])
+            .find(|b| !matches!(b, BoundaryPiece::Window { .. }))
+    };
+    [side(false), side(true)].into_iter().flatten().any(|b| match *b {
+        BoundaryPiece::Wall { from: p, to: q } => {
+            let (dx, dy) = (q[0] - p[0], q[1] - p[1]);
+            let len = dx.hypot(dy);
+            let off = |x: Point| (dx * (x[1] - p[1]) - dy * (x[0] - p[0])).abs() / len;
+            len > 2.0 * tol && off(from) <= tol && off(to) <= tol
+        }
+        _ => false,
+    })
+}
+
 /// The length of the window segment `p q` seen from `at` if the sensor's rule finds it too
 /// short to be worth a trip ([`Sensor::min_window_at`] its near end's distance), `None` if it
 /// is worth one.
@@ -1618,6 +1661,122 @@ mod tests {
         let mut k = Known::for_robot(&setup);
         k.add(&PolygonObservation { at, region: vis.query(at).unwrap() });
         k
+    }
+
+    /// A region seen from `at` whose boundary runs through `verts` counter-clockwise, each
+    /// vertex starting a wall (`true`) or a window (`false`) to the next.
+    fn raw_region(at: Point, verts: &[(Point, bool)]) -> PolygonObservation {
+        use crate::algorithm::visibility::VisibilityRegion;
+        let n = verts.len();
+        let boundary = (0..n)
+            .map(|i| {
+                let ((from, wall), (to, _)) = (verts[i], verts[(i + 1) % n]);
+                let d = |p: Point| (p[0] - at[0]).hypot(p[1] - at[1]);
+                let (reflex, far) = if d(from) <= d(to) { (from, to) } else { (to, from) };
+                if wall {
+                    BoundaryPiece::Wall { from, to }
+                } else {
+                    BoundaryPiece::Window { from, to, reflex, far }
+                }
+            })
+            .collect();
+        let polygon = verts.iter().map(|v| v.0).collect();
+        PolygonObservation { at, region: VisibilityRegion { viewpoint: at, polygon, boundary } }
+    }
+
+    /// A hall 18 × 4 m with a box at 5 ≤ x ≤ 6, 2.6 ≤ y ≤ 3.6, seen as from raw scans (wall
+    /// tolerance 0.07 m, windows under 0.4 m not worth a trip):
+    /// - from (1, 2): the bottom wall whole to x = 9, then as a chain of gaps between
+    ///   returns on its line (a grazing view) to the corner; the box casts two occlusions;
+    /// - from (13, 0.5), placed `offset` metres off in y (a pose error): the bottom wall whole
+    ///   from x = 8.5 to 17.5;
+    /// - from below the box's far occlusion: a wall beside it, 0.15 m off its line.
+    fn grazing_views(offset: f64) -> Known {
+        let sensor = Sensor { min_window: 0.4, wall_tolerance: 0.07, ..Sensor::default() };
+        let mut k = Known::for_robot(&RobotSetup {
+            footprint: Footprint::disc(0.2).unwrap(),
+            sensor,
+            ..RobotSetup::default()
+        });
+        let (wall, gap) = (true, false);
+        k.add(&raw_region(
+            [1.0, 2.0],
+            &[
+                ([0.0, 0.0], wall),
+                ([9.0, 0.0], gap),
+                ([10.0, 0.0], gap),
+                ([11.4, 0.0], gap),
+                ([13.0, 0.0], gap),
+                ([15.0, 0.0], gap),
+                ([18.0, 0.0], wall),
+                ([18.0, 4.0], wall),
+                ([17.67, 4.0], gap),
+                ([6.0, 2.6], wall),
+                ([5.0, 2.6], wall),
+                ([5.0, 3.6], gap),
+                ([6.0, 4.0], wall),
+                ([0.0, 4.0], wall),
+            ],
+        ));
+        let y = offset;
+        k.add(&raw_region(
+            [13.0, 0.5 + y],
+            &[([8.5, y], wall), ([17.5, y], gap), ([17.5, 2.0], gap), ([8.5, 2.0], gap)],
+        ));
+        // Along the occlusion from (17.67, 4) to (6, 2.6), 0.15 m to its near side.
+        let (a, b) = ([17.67, 4.0], [6.0, 2.6]);
+        let (dx, dy) = (b[0] - a[0], b[1] - a[1]);
+        let len = f64::hypot(dx, dy);
+        let nrm = [-dy / len, dx / len];
+        let at = |t: f64, off: f64| [a[0] + t * dx + off * nrm[0], a[1] + t * dy + off * nrm[1]];
+        k.add(&raw_region(
+            at(0.5, 1.0),
+            &[
+                (at(0.8, 0.15), wall),
+                (at(0.02, 0.15), gap),
+                (at(0.02, 1.5), gap),
+                (at(0.8, 1.5), gap),
+            ],
+        ));
+        k
+    }
+
+    #[test]
+    fn gaps_on_a_wall_line_are_told_from_occlusions_and_closed_across_pose_errors() {
+        let k = grazing_views(0.15);
+        // From the definition: a gap on a wall line has both ends on the hall's bottom wall
+        // (y = 0); the box's occlusions run from a corner off any wall's line.
+        let first = &k.views[0];
+        let on_bottom: Vec<bool> =
+            first.windows.iter().map(|w| w.from[1] == 0.0 && w.to[1] == 0.0).collect();
+        assert_eq!(on_bottom.iter().filter(|&&b| b).count(), 5);
+        assert_eq!(on_bottom.len(), 7);
+        for (w, &want) in first.windows.iter().zip(&on_bottom) {
+            assert_eq!(w.on_line, want, "{:?} to {:?}", w.from, w.to);
+        }
+        // The second scan sees the bottom wall whole from x = 8.5 to 17.5, placed 0.15 m off:
+        // beyond the wall tolerance, within the line tolerance. The gaps there are closed;
+        // placed 0.3 m off they stay open, as they do with an exact sensor's tolerance.
+        let within = |w: &Window| {
+            w.on_line && w.from[0].min(w.to[0]) >= 8.5 && w.from[0].max(w.to[0]) <= 17.5
+        };
+        let open_parts = |mut k: Known| {
+            let ws: Vec<usize> =
+                (0..k.views[0].windows.len()).filter(|&i| within(&k.views[0].windows[i])).collect();
+            ws.into_iter().map(|i| k.window_target(0, i).is_some()).collect::<Vec<bool>>()
+        };
+        assert_eq!(open_parts(k.clone()), vec![false; 4]);
+        assert_eq!(open_parts(grazing_views(0.3)), vec![true; 4]);
+        // The occlusion with a wall 0.15 m beside it keeps the narrow band and stays open.
+        let mut k = k;
+        let occlusion = (0..k.views[0].windows.len())
+            .find(|&i| k.views[0].windows[i].from == [17.67, 4.0])
+            .unwrap();
+        assert!(!k.views[0].windows[occlusion].on_line);
+        assert!(k.window_target(0, occlusion).is_some());
+        assert_eq!(k.views[0].windows[occlusion].covered, Vec::<[f64; 2]>::new());
+        let tol = k.line_tolerance() - k.sensor.wall_tolerance;
+        assert_eq!(tol, crate::protocol::polygon::LINE_POSE_ALLOWANCE);
     }
 
     #[test]
