@@ -176,6 +176,15 @@ fn sensor_rows(t: &mut Table, sensor: &SensorInfo) {
     if let Some(n) = sensor.windows_into_walled_pockets {
         t.row(vec!["window parts into small pockets behind walls".into(), n.to_string()]);
     }
+    if let Some(n) = sensor.scans_where_stuck {
+        t.row(vec!["scans where the robot was stuck".into(), n.to_string()]);
+    }
+    if sensor.gave_up == Some(true) {
+        t.row(vec![
+            "gave up".into(),
+            "yes: stuck again where it had scanned for being stuck; windows were left open".into(),
+        ]);
+    }
 }
 
 fn summary(w: &mut dyn Write, o: &RunRecord) -> std::io::Result<()> {

@@ -96,6 +96,15 @@ pub struct SensorInfo {
     /// scans only; absent: none).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub windows_into_walled_pockets: Option<usize>,
+    /// Scans taken where the robot was stuck, its moves and the way back having failed: each
+    /// places it again to plan on from (absent: none).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub scans_where_stuck: Option<usize>,
+    /// `true` when the strategy gave up before every window was explored, stuck again where
+    /// it had scanned for being stuck: what it left open is counted nowhere else (absent: it
+    /// did not give up).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub gave_up: Option<bool>,
 }
 
 impl SensorInfo {
@@ -119,6 +128,8 @@ impl SensorInfo {
                 .then_some(skipped.looked_from),
             windows_into_walled_pockets: (skipped.walled_pocket > 0)
                 .then_some(skipped.walled_pocket),
+            scans_where_stuck: (skipped.stuck_scans > 0).then_some(skipped.stuck_scans),
+            gave_up: skipped.gave_up.then_some(true),
         }
     }
 }

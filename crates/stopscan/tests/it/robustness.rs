@@ -273,3 +273,62 @@ fn moves_that_keep_failing_at_one_place_are_followed_by_a_scan_there() {
     // Each relocating scan follows failures that dropped targets.
     assert!(relocations <= s.skipped().move_failed, "{relocations} relocating scans");
 }
+
+#[test]
+fn a_robot_that_can_drive_neither_on_nor_back_scans_where_it_is_stuck_and_goes_on() {
+    use stopscan::algorithm::visibility::Visibility;
+    use stopscan::protocol::polygon::{Footprint, PolygonObservation, RobotSetup};
+    use stopscan::protocol::{Feedback, MoveFailure};
+    use stopscan::strategy::polygon::DepthFirst;
+    // An office floor; after the second scan every move fails, the way back too (odometry's
+    // drift put the robot against a wall it believes it is clear of), until the robot scans
+    // where it stands; `cured` says whether moves succeed again after that scan.
+    let inst = office(3, 0, 1).unwrap();
+    let vis = Visibility::new(inst.domain).unwrap();
+    let scan =
+        |at: Point| Feedback::Scanned(PolygonObservation { at, region: vis.query(at).unwrap() });
+    let setup = RobotSetup { footprint: Footprint::disc(0.2).unwrap(), ..RobotSetup::default() };
+    for cured in [true, false] {
+        let mut s = DepthFirst::for_robot(&setup);
+        let mut here = inst.start;
+        let mut fb: PolygonFeedback = Feedback::Start { at: here };
+        let (mut scans, mut stuck, mut done) = (0usize, false, false);
+        for _ in 0..20_000 {
+            let after_failure = matches!(fb, Feedback::MoveFailed { .. });
+            match s.act(&fb) {
+                Action::Scan => {
+                    stuck |= after_failure;
+                    scans += 1;
+                    fb = scan(here);
+                }
+                Action::MoveTo { to } => {
+                    if scans >= 2 && !(cured && stuck) {
+                        fb = Feedback::MoveFailed { at: here, reason: MoveFailure::Blocked };
+                    } else {
+                        here = to;
+                        fb = Feedback::Arrived;
+                    }
+                }
+                Action::Done => {
+                    done = true;
+                    break;
+                }
+            }
+        }
+        let k = s.skipped();
+        assert!(done && stuck, "cured {cured}: the robot scans where it is stuck, and ends");
+        assert_eq!(k.stuck_scans, 1, "cured {cured}");
+        // Cured, it explores on to the end (the office's rooms take many scans); stuck again
+        // where it scanned, it gives up, and says so.
+        assert_eq!(k.gave_up, !cured, "cured {cured}");
+        // The run record says so.
+        let info = stopscan::run_record::SensorInfo::of(&setup.sensor, &k);
+        assert_eq!(info.scans_where_stuck, Some(1));
+        assert_eq!(info.gave_up, (!cured).then_some(true));
+        if cured {
+            assert!(scans > 10, "{scans} scans");
+        } else {
+            assert_eq!(scans, 3);
+        }
+    }
+}

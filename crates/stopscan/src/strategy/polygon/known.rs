@@ -192,6 +192,10 @@ pub(super) struct Known {
     /// Whether the last scan was taken to place the robot again ([`Known::move_failed`]).
     #[serde(default)]
     placed_again: bool,
+    /// Where the robot scanned because it could not even drive back ([`Known::stuck`]):
+    /// stuck there again, the strategy gives up.
+    #[serde(default)]
+    stuck_at: Vec<Point>,
     /// The union of the views' regions and its holes, for the sensor rule's pocket term:
     /// built on demand, and rebuilt from the views after deserialising.
     #[serde(skip)]
@@ -262,6 +266,15 @@ pub struct Skipped {
     /// scans, on its raster of what was seen).
     #[serde(default)]
     pub walled_pocket: usize,
+    /// Scans taken where the robot was stuck: its moves failed, and so did the way back
+    /// (odometry's drift can put the robot against a wall it believes it is clear of). The
+    /// scan places it again, and the strategy plans on from there.
+    #[serde(default)]
+    pub stuck_scans: usize,
+    /// Whether the strategy gave up before every window was explored: stuck again where it
+    /// had scanned because it was stuck. What was left open is counted nowhere else.
+    #[serde(default)]
+    pub gave_up: bool,
 }
 
 impl View {
@@ -1344,7 +1357,52 @@ impl Known {
             self.skipped.move_failed += 1;
         }
         let views = &self.views;
-        self.trip.failed_back_to(|p| views.iter().any(|v| v.at == p))
+        match self.trip.failed_back_to(|p| views.iter().any(|v| v.at == p)) {
+            Action::Done => self.stuck(),
+            a => a,
+        }
+    }
+
+    /// The robot can drive neither on nor back ([`Trip::failed`](super::trip::Trip::failed)
+    /// gave up): it scans where it stands, which places it again and gives a view to plan on
+    /// from (its parent is the latest viewpoint the trip passed, through the waypoints reached
+    /// after it). Stuck again within the clearance of a place it scanned at for being stuck,
+    /// or where its last scan was taken to place it again, the strategy gives up, and says
+    /// so ([`Skipped::gave_up`]).
+    fn stuck(&mut self) -> Action<Point> {
+        let driven = self.trip.driven();
+        let (from, view) = (driven.iter().enumerate().rev())
+            .find_map(|(i, &p)| self.view_at(p).map(|v| (i + 1, v)))
+            .unwrap_or((0, self.here.min(self.views.len().saturating_sub(1))));
+        let Some(&at) = driven.last().or(self.trip.start().as_ref()) else {
+            self.skipped.gave_up = true;
+            return Action::Done;
+        };
+        let near = if view < self.views.len() { self.clearance(view).max(1e-3) } else { 1e-3 };
+        let d = |p: &Point| (p[0] - at[0]).hypot(p[1] - at[1]);
+        // A scan there to place the robot again did not help either.
+        let placed_here = self.placed_again && self.views.last().is_some_and(|v| d(&v.at) <= near);
+        if self.views.is_empty() || placed_here || self.stuck_at.iter().any(|p| d(p) <= near) {
+            self.skipped.gave_up = true;
+            return Action::Done;
+        }
+        self.stuck_at.push(at);
+        self.skipped.stuck_scans += 1;
+        // A scan to place the robot again: its target part is already dropped, so the window
+        // and gap are not used ([`Known::add`] reads only the anchor and the waypoints).
+        self.pending = Some(Target {
+            at,
+            via: driven[from..].to_vec(),
+            view,
+            window: 0,
+            gap: [0.0, 0.0],
+            anchor: Some(view),
+            off_gap: false,
+            relocate: true,
+        });
+        self.failed_at = None;
+        self.trip.clear();
+        Action::Scan
     }
 
     /// The view whose viewpoint is `p`, the earliest if several are.

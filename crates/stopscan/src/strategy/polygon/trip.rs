@@ -5,16 +5,17 @@
 //! drops the trip's goal (the caller blacklists it) and the robot drives back the way it
 //! came, through the waypoints it did reach, to where the trip started: from there every
 //! route the strategy knows is valid again, and it plans anew. A way back that fails too is
-//! tried again, up to [`MAX_MOVE_FAILURES`] failures in a row; then the strategy is done (the
-//! robot is stuck where it came from).
+//! tried again, up to [`MAX_MOVE_FAILURES`] failures in a row; then the trip gives up (the
+//! robot is stuck where it came from), and the strategy scans where the robot stands to plan
+//! on from there, once per place (`Known::stuck`).
 
 use serde::{Deserialize, Serialize};
 
 use crate::kernel::Point;
 use crate::protocol::Action;
 
-/// How many moves may fail in a row (no scan, no arrival between them) before a strategy
-/// gives up: the robot cannot even drive back the way it came.
+/// How many moves may fail in a row (no scan, no arrival between them) before a trip gives
+/// up: the robot cannot even drive back the way it came.
 pub const MAX_MOVE_FAILURES: u32 = 3;
 
 /// A trip: the waypoints still to drive, and those reached since it started.
