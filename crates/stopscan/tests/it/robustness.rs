@@ -216,106 +216,109 @@ fn the_loop_ends_a_strategy_that_stops_making_progress_and_keeps_the_run_so_far(
     assert_eq!(e.partial.path, vec![[1.0, 1.0], [3.0, 1.0], [1.0, 1.0]]);
 }
 
-#[test]
-fn moves_that_keep_failing_at_one_place_are_followed_by_a_scan_there() {
+/// What a strategy asked for when driven by hand ([`drive_office`]).
+#[derive(Debug, Clone, Copy, PartialEq)]
+enum Step {
+    /// A scan, and whether it came right after a failed move.
+    Scan { after_failure: bool },
+    /// A move to a goal, and whether it failed.
+    Move { to: Point, failed: bool },
+}
+
+/// Drives `DepthFirst` with a 0.2 m disc on an office floor by hand, for at most `limit`
+/// actions: each goal is reached at once unless `fails(goal, steps so far)` says the move
+/// fails without the robot moving (as a goal that odometry's drift put inside an obstacle
+/// does). Returns the steps, whether the strategy said it was done, what it skipped, and
+/// the robot's setup.
+fn drive_office(
+    limit: usize,
+    mut fails: impl FnMut(Point, &[Step]) -> bool,
+) -> (Vec<Step>, bool, stopscan::strategy::polygon::Skipped, stopscan::protocol::polygon::RobotSetup)
+{
     use stopscan::algorithm::visibility::Visibility;
     use stopscan::protocol::polygon::{Footprint, PolygonObservation, RobotSetup};
     use stopscan::protocol::{Feedback, MoveFailure};
     use stopscan::strategy::polygon::DepthFirst;
-    // An office floor; every goal within 0.5 m of `blocked` fails without the robot moving,
-    // as a goal that odometry's drift put inside an obstacle does, whatever the strategy
-    // plans: the belief there is wrong.
     let inst = office(3, 0, 1).unwrap();
     let vis = Visibility::new(inst.domain).unwrap();
-    let scan =
-        |at: Point| Feedback::Scanned(PolygonObservation { at, region: vis.query(at).unwrap() });
     let setup = RobotSetup { footprint: Footprint::disc(0.2).unwrap(), ..RobotSetup::default() };
     let mut s = DepthFirst::for_robot(&setup);
     let mut here = inst.start;
     let mut fb: PolygonFeedback = Feedback::Start { at: here };
-    let (mut blocked, mut scans): (Option<Point>, usize) = (None, 0);
-    let (mut failures, mut relocations, mut done) = (0, 0, false);
-    let mut placed_again = false;
-    for _ in 0..2_000 {
+    let mut steps = Vec::new();
+    for _ in 0..limit {
         let after_failure = matches!(fb, Feedback::MoveFailed { .. });
         match s.act(&fb) {
             Action::Scan => {
-                // A scan that placed the robot again and did not cure the failures is not
-                // repeated before a scan for a target: it would see the same.
-                assert!(!(after_failure && placed_again), "two scans in a row to place the robot");
-                placed_again = after_failure;
-                relocations += usize::from(after_failure);
-                scans += 1;
-                fb = scan(here);
+                steps.push(Step::Scan { after_failure });
+                fb = Feedback::Scanned(PolygonObservation {
+                    at: here,
+                    region: vis.query(here).unwrap(),
+                });
             }
             Action::MoveTo { to } => {
-                // The first goal after the second scan is where the belief is wrong.
-                if blocked.is_none() && scans == 2 {
-                    blocked = Some(to);
-                }
-                if blocked.is_some_and(|b| (b[0] - to[0]).hypot(b[1] - to[1]) <= 0.5) {
-                    failures += 1;
-                    fb = Feedback::MoveFailed { at: here, reason: MoveFailure::Blocked };
+                let failed = fails(to, &steps);
+                steps.push(Step::Move { to, failed });
+                fb = if failed {
+                    Feedback::MoveFailed { at: here, reason: MoveFailure::Blocked }
                 } else {
                     here = to;
-                    fb = Feedback::Arrived;
-                }
+                    Feedback::Arrived
+                };
             }
-            Action::Done => {
-                done = true;
-                break;
-            }
+            Action::Done => return (steps, true, s.skipped(), setup),
         }
     }
+    (steps, false, s.skipped(), setup)
+}
+
+/// The scans among `steps`, each with whether it came right after a failed move.
+fn scans_of(steps: &[Step]) -> Vec<bool> {
+    steps
+        .iter()
+        .filter_map(|s| match *s {
+            Step::Scan { after_failure } => Some(after_failure),
+            Step::Move { .. } => None,
+        })
+        .collect()
+}
+
+#[test]
+fn moves_that_keep_failing_at_one_place_are_followed_by_a_scan_there() {
+    // Every goal within 0.5 m of the first goal after the second scan fails: the belief
+    // there is wrong, whatever the strategy plans.
+    let mut blocked: Option<Point> = None;
+    let (steps, done, skipped, _) = drive_office(2_000, |to, steps| {
+        if blocked.is_none() && scans_of(steps).len() == 2 {
+            blocked = Some(to);
+        }
+        blocked.is_some_and(|b| (b[0] - to[0]).hypot(b[1] - to[1]) <= 0.5)
+    });
+    let failures = steps.iter().filter(|s| matches!(s, Step::Move { failed: true, .. })).count();
+    let scans = scans_of(&steps);
+    let relocations = scans.iter().filter(|&&f| f).count();
     assert!(done, "the exploration ends");
     assert!(failures >= 3, "{failures} failures");
     assert!(relocations >= 1, "no scan after repeated failures at one place");
+    // A scan that placed the robot again and did not cure the failures is not repeated
+    // before a scan for a target: it would see the same.
+    assert!(!scans.windows(2).any(|w| w[0] && w[1]), "two scans in a row to place the robot");
     // Each relocating scan follows failures that dropped targets.
-    assert!(relocations <= s.skipped().move_failed, "{relocations} relocating scans");
+    assert!(relocations <= skipped.move_failed, "{relocations} relocating scans");
 }
 
 #[test]
 fn a_robot_that_can_drive_neither_on_nor_back_scans_where_it_is_stuck_and_goes_on() {
-    use stopscan::algorithm::visibility::Visibility;
-    use stopscan::protocol::polygon::{Footprint, PolygonObservation, RobotSetup};
-    use stopscan::protocol::{Feedback, MoveFailure};
-    use stopscan::strategy::polygon::DepthFirst;
-    // An office floor; after the second scan every move fails, the way back too (odometry's
-    // drift put the robot against a wall it believes it is clear of), until the robot scans
-    // where it stands; `cured` says whether moves succeed again after that scan.
-    let inst = office(3, 0, 1).unwrap();
-    let vis = Visibility::new(inst.domain).unwrap();
-    let scan =
-        |at: Point| Feedback::Scanned(PolygonObservation { at, region: vis.query(at).unwrap() });
-    let setup = RobotSetup { footprint: Footprint::disc(0.2).unwrap(), ..RobotSetup::default() };
+    // After the second scan every move fails, the way back too (odometry's drift put the
+    // robot against a wall it believes it is clear of), until the robot scans where it
+    // stands; `cured` says whether moves succeed again after that scan.
     for cured in [true, false] {
-        let mut s = DepthFirst::for_robot(&setup);
-        let mut here = inst.start;
-        let mut fb: PolygonFeedback = Feedback::Start { at: here };
-        let (mut scans, mut stuck, mut done) = (0usize, false, false);
-        for _ in 0..20_000 {
-            let after_failure = matches!(fb, Feedback::MoveFailed { .. });
-            match s.act(&fb) {
-                Action::Scan => {
-                    stuck |= after_failure;
-                    scans += 1;
-                    fb = scan(here);
-                }
-                Action::MoveTo { to } => {
-                    if scans >= 2 && !(cured && stuck) {
-                        fb = Feedback::MoveFailed { at: here, reason: MoveFailure::Blocked };
-                    } else {
-                        here = to;
-                        fb = Feedback::Arrived;
-                    }
-                }
-                Action::Done => {
-                    done = true;
-                    break;
-                }
-            }
-        }
-        let k = s.skipped();
+        let (steps, done, k, setup) = drive_office(20_000, |_, steps| {
+            let scans = scans_of(steps);
+            scans.len() >= 2 && !(cured && scans.contains(&true))
+        });
+        let scans = scans_of(&steps);
+        let stuck = scans.contains(&true);
         assert!(done && stuck, "cured {cured}: the robot scans where it is stuck, and ends");
         assert_eq!(k.stuck_scans, 1, "cured {cured}");
         // Cured, it explores on to the end (the office's rooms take many scans); stuck again
@@ -326,9 +329,9 @@ fn a_robot_that_can_drive_neither_on_nor_back_scans_where_it_is_stuck_and_goes_o
         assert_eq!(info.scans_where_stuck, Some(1));
         assert_eq!(info.gave_up, (!cured).then_some(true));
         if cured {
-            assert!(scans > 10, "{scans} scans");
+            assert!(scans.len() > 10, "{} scans", scans.len());
         } else {
-            assert_eq!(scans, 3);
+            assert_eq!(scans.len(), 3);
         }
     }
 }

@@ -385,8 +385,9 @@ impl Known {
 
     /// How far apart two scans may place one wall along a window that is a gap on a wall
     /// line (raw scans): the sensor's [`wall_tolerance`](Sensor::wall_tolerance) plus
-    /// [`LINE_POSE_ALLOWANCE`](crate::protocol::polygon::LINE_POSE_ALLOWANCE): the two scans' poses are each only as good as their
-    /// alignment, and a gap seen at a grazing angle is closed by the wall seen from nearer.
+    /// [`LINE_POSE_ALLOWANCE`](crate::protocol::polygon::LINE_POSE_ALLOWANCE): the two scans'
+    /// poses are each only as good as their alignment, and a gap seen at a grazing angle is
+    /// closed by the wall seen from nearer.
     pub(super) fn line_tolerance(&self) -> f64 {
         self.sensor.wall_tolerance + crate::protocol::polygon::LINE_POSE_ALLOWANCE
     }
@@ -1338,19 +1339,9 @@ impl Known {
         self.failed_at = issued.map(|w| (w, times));
         if times >= SAME_WAYPOINT_FAILURES
             && !self.placed_again
-            && let Some(mut t) = self.pending.take()
+            && let Some(t) = self.pending.take()
         {
-            let driven = self.trip.driven();
-            // From the latest viewpoint the trip passed, through the waypoints after it.
-            let (from, view) = (driven.iter().enumerate().rev())
-                .find_map(|(i, &p)| self.view_at(p).map(|v| (i + 1, v)))
-                .unwrap_or((0, self.here));
-            t.via = driven[from..].to_vec();
-            t.anchor = Some(view);
-            t.relocate = true;
-            self.pending = Some(t);
-            self.trip.clear();
-            return Action::Scan;
+            return self.scan_to_place_again(t);
         }
         if let Some(t) = self.pending.take() {
             self.handled(&t);
@@ -1363,46 +1354,56 @@ impl Known {
         }
     }
 
-    /// The robot can drive neither on nor back ([`Trip::failed`](super::trip::Trip::failed)
-    /// gave up): it scans where it stands, which places it again and gives a view to plan on
-    /// from (its parent is the latest viewpoint the trip passed, through the waypoints reached
-    /// after it). Stuck again within the clearance of a place it scanned at for being stuck,
-    /// or where its last scan was taken to place it again, the strategy gives up, and says
-    /// so ([`Skipped::gave_up`]).
-    fn stuck(&mut self) -> Action<Point> {
+    /// A scan where the robot stands, to place it again: the view it gives hangs from the
+    /// latest viewpoint the trip passed, through the waypoints reached after it. `t` is the
+    /// target the scan is for (its part stays open).
+    fn scan_to_place_again(&mut self, mut t: Target) -> Action<Point> {
         let driven = self.trip.driven();
         let (from, view) = (driven.iter().enumerate().rev())
             .find_map(|(i, &p)| self.view_at(p).map(|v| (i + 1, v)))
-            .unwrap_or((0, self.here.min(self.views.len().saturating_sub(1))));
-        let Some(&at) = driven.last().or(self.trip.start().as_ref()) else {
+            .unwrap_or((0, self.here));
+        t.via = driven[from..].to_vec();
+        t.anchor = Some(view);
+        t.relocate = true;
+        self.pending = Some(t);
+        self.trip.clear();
+        Action::Scan
+    }
+
+    /// The robot can drive neither on nor back ([`Trip::failed`](super::trip::Trip::failed)
+    /// gave up): it scans where it stands ([`Known::scan_to_place_again`]), and plans on from
+    /// the view that gives. Stuck again within the clearance of a place it scanned at for
+    /// being stuck, or where its last scan was taken to place it again, the strategy gives
+    /// up, and says so ([`Skipped::gave_up`]).
+    fn stuck(&mut self) -> Action<Point> {
+        let at = self.trip.driven().last().copied().or(self.trip.start());
+        let Some(at) = at.filter(|_| self.here < self.views.len()) else {
             self.skipped.gave_up = true;
             return Action::Done;
         };
-        let near = if view < self.views.len() { self.clearance(view).max(1e-3) } else { 1e-3 };
+        let near = self.clearance(self.here).max(1e-3);
         let d = |p: &Point| (p[0] - at[0]).hypot(p[1] - at[1]);
         // A scan there to place the robot again did not help either.
         let placed_here = self.placed_again && self.views.last().is_some_and(|v| d(&v.at) <= near);
-        if self.views.is_empty() || placed_here || self.stuck_at.iter().any(|p| d(p) <= near) {
+        if placed_here || self.stuck_at.iter().any(|p| d(p) <= near) {
             self.skipped.gave_up = true;
             return Action::Done;
         }
         self.stuck_at.push(at);
         self.skipped.stuck_scans += 1;
-        // A scan to place the robot again: its target part is already dropped, so the window
-        // and gap are not used ([`Known::add`] reads only the anchor and the waypoints).
-        self.pending = Some(Target {
+        // Its target part was dropped already, so the window and gap are not used
+        // ([`Known::add`] reads only the anchor and the waypoints of a scan to place again).
+        let here = self.here;
+        self.scan_to_place_again(Target {
             at,
-            via: driven[from..].to_vec(),
-            view,
+            via: Vec::new(),
+            view: here,
             window: 0,
             gap: [0.0, 0.0],
-            anchor: Some(view),
+            anchor: None,
             off_gap: false,
             relocate: true,
-        });
-        self.failed_at = None;
-        self.trip.clear();
-        Action::Scan
+        })
     }
 
     /// The view whose viewpoint is `p`, the earliest if several are.
