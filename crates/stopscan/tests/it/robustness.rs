@@ -335,3 +335,41 @@ fn a_robot_that_can_drive_neither_on_nor_back_scans_where_it_is_stuck_and_goes_o
         }
     }
 }
+
+#[test]
+fn a_part_dropped_by_a_failed_move_is_tried_again_before_the_exploration_ends() {
+    // The first goal after the second scan fails: once (a passing obstacle), or every time
+    // (the way there is blocked for good).
+    for always in [false, true] {
+        let mut goal: Option<Point> = None;
+        let mut failed = 0;
+        let near = |a: Point, b: Point| (a[0] - b[0]).hypot(a[1] - b[1]) <= 0.5;
+        let (steps, done, skipped, _) = drive_office(20_000, |to, steps| {
+            if goal.is_none() && scans_of(steps).len() == 2 {
+                goal = Some(to);
+            }
+            let fails = goal.is_some_and(|g| near(g, to)) && (always || failed == 0);
+            failed += usize::from(fails);
+            fails
+        });
+        let g = goal.expect("a goal after the second scan");
+        assert!(done, "always {always}: the exploration ends");
+        let fails: Vec<usize> = (0..steps.len())
+            .filter(|&i| matches!(steps[i], Step::Move { failed: true, .. }))
+            .collect();
+        let (first, last) = (fails[0], fails[fails.len() - 1]);
+        if always {
+            // After the first failure the strategy went on elsewhere and scanned, and at what
+            // would have been the end it tried the goal again; that failed too, the part was
+            // dropped for good, and no scan came after.
+            assert!(matches!(steps[last], Step::Move { to, .. } if near(to, g)));
+            assert!(steps[first..last].iter().any(|s| matches!(s, Step::Scan { .. })));
+            assert!(!steps[last..].iter().any(|s| matches!(s, Step::Scan { .. })));
+            assert!(skipped.move_failed >= 1);
+        } else {
+            // Tried again, the part counts as dropped no more.
+            assert_eq!(fails.len(), 1);
+            assert_eq!(skipped.move_failed, 0, "the part was tried again");
+        }
+    }
+}

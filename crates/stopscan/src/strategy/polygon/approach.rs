@@ -10,7 +10,7 @@
 //! bounded number of them (those nearest the straight line the robot cannot drive), searched
 //! with Dijkstra's algorithm (`pathfinding`).
 
-use super::known::keeps_clear;
+use super::known::{keeps_clear, keeps_clear_leaving};
 use crate::kernel::{Point, RingSide, ring_side};
 
 /// How many reflex vertices of the region (those nearest the blocked straight line) lend
@@ -38,6 +38,10 @@ const ASIDE: [f64; 11] = {
 pub(super) struct Approach<'a> {
     rings: Vec<&'a [Point]>,
     c: f64,
+    /// Whether a path's first leg may keep less than `c` when the robot stands nearer than
+    /// `c` to the boundary ([`keeps_clear_leaving`]: raw scans, where the drift or a scan's
+    /// alignment may put it there).
+    leaving: bool,
 }
 
 /// A path found: the waypoints strictly between the start and the goal, and the goal's index
@@ -60,14 +64,32 @@ impl<'a> Approach<'a> {
     /// Paths inside `polygon` (a view's region, counter-clockwise) keeping `c > 0` from its
     /// boundary.
     pub(super) fn new(polygon: &'a [Point], c: f64) -> Self {
-        Self { rings: vec![polygon], c }
+        Self { rings: vec![polygon], c, leaving: false }
     }
 
     /// Paths inside the region with outer ring `shape[0]` (counter-clockwise) and holes
     /// `shape[1..]` (clockwise), keeping `c > 0` from every ring: the union of several
     /// views' regions.
     pub(super) fn with_holes(shape: &'a [Vec<Point>], c: f64) -> Self {
-        Self { rings: shape.iter().map(Vec::as_slice).collect(), c }
+        Self { rings: shape.iter().map(Vec::as_slice).collect(), c, leaving: false }
+    }
+
+    /// These paths, with a first leg that may keep less than the clearance when the start
+    /// does ([`Approach::leaving`]) if `leaving`.
+    #[must_use]
+    pub(super) fn leaving(self, leaving: bool) -> Self {
+        Self { leaving, ..self }
+    }
+
+    /// Whether the first leg `a b` of a path from `a` keeps the clearance: as
+    /// [`Approach::clear`], or, when the robot at `a` stands nearer than the clearance to the
+    /// boundary and the first leg may leave it so ([`Approach::leaving`]), keeping 99% of
+    /// what it has there ([`keeps_clear_leaving`]).
+    fn clear_leaving(&self, a: Point, b: Point) -> bool {
+        if !self.leaving {
+            return self.clear(a, b);
+        }
+        self.rings.iter().all(|r| keeps_clear_leaving(r, a, b, self.c))
     }
 
     /// Whether the straight move `a b` keeps the clearance from every edge
@@ -160,7 +182,9 @@ impl<'a> Approach<'a> {
             let mut next = Vec::new();
             if u < first_goal {
                 for (v, &b) in nodes.iter().enumerate().skip(1) {
-                    if v != u && (v < first_goal || open[v - first_goal]) && self.clear(a, b) {
+                    let clear =
+                        |a, b| if u == 0 { self.clear_leaving(a, b) } else { self.clear(a, b) };
+                    if v != u && (v < first_goal || open[v - first_goal]) && clear(a, b) {
                         next.push((v, cost(a, b)));
                     }
                 }
@@ -262,6 +286,28 @@ mod tests {
             std::iter::once(from).chain(p.via.iter().copied()).chain([goal]).collect();
         assert!(p.via.len() >= 2);
         assert!(legs_keep_clear(&shape, &pts, 0.3), "{pts:?}");
+    }
+
+    #[test]
+    fn a_start_nearer_than_the_clearance_to_a_jamb_is_left_on_raw_scans() {
+        let poly = two_rooms();
+        // The robot stands in the door, 0.25 m from its right jamb's corner (2.5, 4): the
+        // drift or an alignment put it there. The goal is in the upper room's right.
+        let (from, goal) = ([2.25, 4.0], [3.5, 7.5]);
+        let own = crate::geometry::segment_distance(from, [2.5, 4.0], [2.5, 4.2]);
+        assert!((own - 0.25).abs() < 1e-12);
+        let a = Approach::new(&poly, 0.3);
+        let corners = a.corners([from, goal]);
+        // Holding the whole clearance from the start, no path leaves it.
+        assert_eq!(a.path(from, &corners, &[goal]), None);
+        let a = a.leaving(true);
+        let p = a.path(from, &corners, &[goal]).expect("a path out of the door");
+        let pts: Vec<Point> =
+            std::iter::once(from).chain(p.via.iter().copied()).chain([goal]).collect();
+        // The first leg keeps 99% of what the robot has where it stands; every later leg
+        // keeps the whole clearance (checked from the definition).
+        assert!(legs_keep_clear(std::slice::from_ref(&poly), &pts[..2], 0.99 * own), "{pts:?}");
+        assert!(legs_keep_clear(std::slice::from_ref(&poly), &pts[1..], 0.3), "{pts:?}");
     }
 
     #[test]

@@ -173,6 +173,14 @@ pub(super) struct Known {
     /// near side.
     #[serde(default)]
     deferred: Vec<Deferred>,
+    /// Window parts dropped because a move toward their viewpoint failed
+    /// ([`Known::move_failed`]), with no near side kept.
+    #[serde(default)]
+    dropped: Vec<Deferred>,
+    /// How many views there were when the parts left out of reach or dropped were last tried
+    /// again at what would have been the end ([`Known::retry_left_parts`]).
+    #[serde(default)]
+    retried_at: usize,
     /// The viewpoints asked for by the scans taken so far for window parts (a robot that
     /// could not stand exactly there scanned as near as it could).
     #[serde(default)]
@@ -228,7 +236,8 @@ impl PartialEq for Seen {
     }
 }
 
-/// A window part closed as out of reach, and points on its near side (beside its middle).
+/// A window part closed without a visit: out of reach, with points on its near side (beside
+/// its middle); or dropped by a failed move, with none.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 struct Deferred {
     view: usize,
@@ -247,14 +256,16 @@ pub struct Skipped {
     pub below_rule_length: f64,
     /// Window parts no viewpoint with the footprint's clearance could be planned for from the
     /// view that saw them: none beside the part, and none from where the part is seen, that
-    /// the robot can reach inside that view's region, straight or bending around its corners.
+    /// the robot can reach inside that view's region, straight or bending around its corners;
+    /// nor after the scans that came later, at what would have been the end.
     pub out_of_reach: usize,
     /// Window parts that open into a pocket enclosed by what was seen smaller than the
     /// sensor rule's `min_pocket` share of the area seen ([`Sensor::min_pocket`]).
     #[serde(default)]
     pub small_pocket: usize,
     /// Window parts dropped because the robot reported that it could not reach the viewpoint
-    /// planned for them (a move failure).
+    /// planned for them (a move failure), and again when tried at what would have been the
+    /// end, after the scans that came later.
     #[serde(default)]
     pub move_failed: usize,
     /// Window parts whose viewpoint a scan already stood at or was asked for (a view's parts
@@ -518,7 +529,7 @@ impl Known {
             .filter(|&(z, foot)| sees_across(shape, z, foot))
             .map(|(z, _)| z)
             .collect();
-        let a = Approach::with_holes(shape, c);
+        let a = Approach::with_holes(shape, c).leaving(self.relaxed());
         self.pass_or_look(&a, at, g, &beside, |z, m| sees_across(shape, z, m))
     }
 
@@ -862,6 +873,41 @@ impl Known {
         any
     }
 
+    /// At what would be the end of the exploration, opens again every window part left out of
+    /// reach ([`Skipped::out_of_reach`]) or dropped by a failed move ([`Skipped::move_failed`]),
+    /// when views were added since they were last tried: the scans taken since may have opened
+    /// a way to them (a path through the union of the views' regions), and a move that failed
+    /// on a pose error may succeed from a better pose. Each try either ends in a scan, which
+    /// adds a view, or leaves the parts as they were, so the exploration still ends. Returns
+    /// whether any part was opened.
+    fn retry_left_parts(&mut self) -> bool {
+        if self.views.len() <= self.retried_at {
+            return false;
+        }
+        self.retried_at = self.views.len();
+        let left: Vec<Deferred> = std::mem::take(&mut self.deferred)
+            .into_iter()
+            .chain(std::mem::take(&mut self.dropped))
+            .collect();
+        let any = !left.is_empty();
+        self.skipped.out_of_reach = 0;
+        self.skipped.move_failed = 0;
+        for d in left {
+            self.open_again(&d);
+        }
+        any
+    }
+
+    /// Opens part `d` of its window again; the window's cover is recomputed from every view,
+    /// so what was seen of it since stays covered.
+    fn open_again(&mut self, d: &Deferred) {
+        let v = &mut self.views[d.view];
+        v.explored = false;
+        let w = &mut v.windows[d.window];
+        w.covered = uncover(&w.covered, d.gap);
+        w.checked = 0;
+    }
+
     /// Opens again the deferred window parts whose near side the new view `nv` holds: a
     /// viewpoint in its region may reach them. Their windows' cover is recomputed from every
     /// view, so the parts seen since stay covered.
@@ -872,11 +918,7 @@ impl Known {
         self.deferred = kept;
         for d in revived {
             self.skipped.out_of_reach -= 1;
-            let v = &mut self.views[d.view];
-            v.explored = false;
-            let w = &mut v.windows[d.window];
-            w.covered = uncover(&w.covered, d.gap);
-            w.checked = 0;
+            self.open_again(&d);
         }
     }
 
@@ -919,7 +961,7 @@ impl Known {
             return Some((z, Vec::new()));
         }
         let beside: Vec<Point> = beside.iter().filter(|b| sees_foot(b)).map(|b| b.0).collect();
-        let a = Approach::new(&v.polygon, c);
+        let a = Approach::new(&v.polygon, c).leaving(self.relaxed());
         let g = part_points(from, to, gap);
         self.pass_or_look(&a, v.at, g, &beside, |z, m| self.sees_point_within(view, z, m))
     }
@@ -1346,6 +1388,8 @@ impl Known {
         if let Some(t) = self.pending.take() {
             self.handled(&t);
             self.skipped.move_failed += 1;
+            let (view, window, gap) = (t.view, t.window, t.gap);
+            self.dropped.push(Deferred { view, window, gap, near: Vec::new() });
         }
         let views = &self.views;
         match self.trip.failed_back_to(|p| views.iter().any(|v| v.at == p)) {
@@ -1618,7 +1662,9 @@ pub(super) fn act<S>(
 ) -> Action<Point> {
     let replan = |s: &mut S, v: usize| {
         let mut a = plan(s, v);
-        while matches!(a, Action::Done) && known(s).reopen_wide_openings() {
+        while matches!(a, Action::Done)
+            && (known(s).reopen_wide_openings() || known(s).retry_left_parts())
+        {
             a = plan(s, v);
         }
         a
