@@ -121,8 +121,14 @@ pub struct WallMap {
     /// Whether each segment is a wall seen (not a bridge across a gap between returns, which
     /// may be a door): only walls stop a beam in [`WallMap::crossings`].
     solid: Vec<bool>,
+    /// The stop each segment was seen from ([`NO_OWNER`] when none was given): an alignment
+    /// to the map is an alignment to the stops whose walls it paired with.
+    owner: Vec<u32>,
     cells: rustc_hash::FxHashMap<(i64, i64), Vec<u32>>,
 }
+
+/// The owner of a segment added without one ([`WallMap::extend`], [`WallMap::extend_bridges`]).
+pub const NO_OWNER: u32 = u32::MAX;
 
 /// The wall map's cell side, metres.
 const CELL: f64 = 1.0;
@@ -149,16 +155,16 @@ impl WallMap {
 
     /// Adds wall segments (degenerate and non-finite ones are skipped).
     pub fn extend(&mut self, walls: &[[Point; 2]]) {
-        self.push(walls, true);
+        self.push(walls, true, NO_OWNER);
     }
 
     /// Adds bridges: segments across gaps between returns on one wall line, evidence of the
     /// line for matching but not of a wall (a beam may pass through one).
     pub fn extend_bridges(&mut self, bridges: &[[Point; 2]]) {
-        self.push(bridges, false);
+        self.push(bridges, false, NO_OWNER);
     }
 
-    fn push(&mut self, walls: &[[Point; 2]], solid: bool) {
+    fn push(&mut self, walls: &[[Point; 2]], solid: bool, owner: u32) {
         for w in walls {
             let len = (w[1][0] - w[0][0]).hypot(w[1][1] - w[0][1]);
             if !(len.is_finite() && len > 1e-9) {
@@ -167,6 +173,7 @@ impl WallMap {
             let id = self.segments.len() as u32;
             self.segments.push(*w);
             self.solid.push(solid);
+            self.owner.push(owner);
             let (a, b) = (cell_of(w[0]), cell_of(w[1]));
             // Every cell the segment's box covers (walls are short, from one scan each).
             for i in a.0.min(b.0)..=a.0.max(b.0) {
@@ -188,17 +195,19 @@ impl WallMap {
     /// hold yet: each is cut into pieces of at most `piece` metres, and a piece is skipped
     /// when a segment of the same orientation runs within `tol` of its middle. A wall seen
     /// again from a pose that is a little off would otherwise stand in the map twice, and
-    /// later scans would align to either copy.
+    /// later scans would align to either copy. The pieces added are `owner`'s
+    /// ([`WallMap::pairs_by_owner`]).
     pub fn extend_unseen(
         &mut self,
         walls: &[[Point; 2]],
         bridges: &[[Point; 2]],
         piece: f64,
         tol: f64,
+        owner: u32,
     ) {
         let (walls, bridges) = (self.unseen(walls, piece, tol), self.unseen(bridges, piece, tol));
-        self.push(&walls, true);
-        self.push(&bridges, false);
+        self.push(&walls, true, owner);
+        self.push(&bridges, false, owner);
     }
 
     /// The pieces of `walls` (at most `piece` long) that no segment of the map holds.
@@ -321,9 +330,9 @@ impl WallMap {
     /// The nearest segment to `q` within `gate` whose foot from `q` falls inside it and whose
     /// free side faces the scanner at `eye` (a return lies on a face the scanner sees: the
     /// back face of a thin wall is never its match): its unit normal and a point on it.
-    fn nearest(&self, q: Point, eye: Point, gate: f64) -> Option<(Point, Point, f64)> {
+    fn nearest(&self, q: Point, eye: Point, gate: f64) -> Option<(Point, Point, f64, u32)> {
         let (lo, hi) = (cell_of([q[0] - gate, q[1] - gate]), cell_of([q[0] + gate, q[1] + gate]));
-        let mut best: Option<(Point, Point, f64)> = None;
+        let mut best: Option<(Point, Point, f64, u32)> = None;
         for i in lo.0..=hi.0 {
             for j in lo.1..=hi.1 {
                 let Some(ids) = self.cells.get(&(i, j)) else { continue };
@@ -344,7 +353,7 @@ impl WallMap {
                     let n = [-dy / l, dx / l];
                     let d = ((q[0] - a[0]) * n[0] + (q[1] - a[1]) * n[1]).abs();
                     if d <= gate && best.is_none_or(|b| d < b.2) {
-                        best = Some((n, a, d));
+                        best = Some((n, a, d, id));
                     }
                 }
             }
@@ -552,6 +561,25 @@ pub fn information(
     normal_equations(points, pose, map, params.gate_end, params, 1.0).0
 }
 
+/// The information of the alignment of `points` to `map` at `pose`, as [`information`], split
+/// by the stop whose walls each pair is with ([`WallMap::extend_unseen`]'s owner): for each
+/// owner, its matrix and its pairs, in the order of owners. Summed over the owners it is
+/// [`information`].
+pub fn information_by_owner(
+    points: &[Point],
+    pose: &Pose,
+    map: &WallMap,
+    params: &IcpParams,
+) -> Vec<(u32, [[f64; 3]; 3], usize)> {
+    let mut by = std::collections::BTreeMap::<u32, ([[f64; 3]; 3], usize)>::new();
+    for_each_pair(points, pose, map, params.gate_end, params, 1.0, |owner, w, jac, _| {
+        let (h, n) = by.entry(owner).or_insert(([[0.0; 3]; 3], 0));
+        add_outer(h, w, &jac);
+        *n += 1;
+    });
+    by.into_iter().map(|(owner, (h, n))| (owner, h, n)).collect()
+}
+
 /// The normal equations of the point-to-line residuals at `pose` (pairs within `gate`, Huber
 /// weights, in units of the range noise), with the rotation scaled by `lever`: the matrix,
 /// the right-hand side, the pairs and the sum of squared residuals.
@@ -563,28 +591,52 @@ fn normal_equations(
     params: &IcpParams,
     lever: f64,
 ) -> ([[f64; 3]; 3], [f64; 3], usize, f64) {
-    let c = pose.at();
-    let w2 = 1.0 / params.sigma.max(0.01).powi(2);
     let mut h = [[0.0; 3]; 3];
     let mut g = [0.0; 3];
     let (mut pairs, mut sq) = (0usize, 0.0);
-    for p in points {
-        let q = pose.apply(*p);
-        let Some((n, a, _)) = map.nearest(q, c, gate) else { continue };
-        let r = n[0] * (q[0] - a[0]) + n[1] * (q[1] - a[1]);
-        let w = w2 * if r.abs() <= params.huber { 1.0 } else { params.huber / r.abs() };
-        // d(n · q') / d(dx, dy, dθ·lever) at zero.
-        let jac = [n[0], n[1], (n[0] * -(q[1] - c[1]) + n[1] * (q[0] - c[0])) / lever];
-        for (i, hi) in h.iter_mut().enumerate() {
-            for (j, hij) in hi.iter_mut().enumerate() {
-                *hij += w * jac[i] * jac[j];
-            }
-            g[i] -= w * jac[i] * r;
+    for_each_pair(points, pose, map, gate, params, lever, |_, w, jac, r| {
+        add_outer(&mut h, w, &jac);
+        for (gi, ji) in g.iter_mut().zip(jac) {
+            *gi -= w * ji * r;
         }
         pairs += 1;
         sq += r * r;
-    }
+    });
     (h, g, pairs, sq)
+}
+
+/// `h += w · jac jacᵀ`.
+fn add_outer(h: &mut [[f64; 3]; 3], w: f64, jac: &[f64; 3]) {
+    for (i, hi) in h.iter_mut().enumerate() {
+        for (j, hij) in hi.iter_mut().enumerate() {
+            *hij += w * jac[i] * jac[j];
+        }
+    }
+}
+
+/// Calls `f(owner, weight, jacobian, residual)` for every return of `points`, placed at
+/// `pose`, that has a wall of `map` within `gate` ([`WallMap::nearest`]): the Huber weight
+/// in units of the range noise, and the derivative of the point-to-line residual in
+/// `(dx, dy, dθ·lever)` at zero.
+fn for_each_pair(
+    points: &[Point],
+    pose: &Pose,
+    map: &WallMap,
+    gate: f64,
+    params: &IcpParams,
+    lever: f64,
+    mut f: impl FnMut(u32, f64, [f64; 3], f64),
+) {
+    let c = pose.at();
+    let w2 = 1.0 / params.sigma.max(0.01).powi(2);
+    for p in points {
+        let q = pose.apply(*p);
+        let Some((n, a, _, id)) = map.nearest(q, c, gate) else { continue };
+        let r = n[0] * (q[0] - a[0]) + n[1] * (q[1] - a[1]);
+        let w = w2 * if r.abs() <= params.huber { 1.0 } else { params.huber / r.abs() };
+        let jac = [n[0], n[1], (n[0] * -(q[1] - c[1]) + n[1] * (q[0] - c[0])) / lever];
+        f(map.owner[id as usize], w, jac, r);
+    }
 }
 
 /// The step `h⁻¹ g` in the eigen-directions whose eigenvalue is above `ratio` of the
@@ -689,6 +741,59 @@ mod tests {
             })
             .map(|p| inv.apply(p))
             .collect()
+    }
+
+    #[test]
+    fn an_alignment_is_split_among_the_stops_whose_walls_it_pairs_with() {
+        // Stop 3 saw the room's outer walls, stop 7 the pillar; the scanner sees both.
+        let walls = room_walls();
+        let (outer, pillar) = walls.split_at(4);
+        let mut map = WallMap::new();
+        map.extend_unseen(outer, &[], 0.5, 0.3, 3);
+        map.extend_unseen(pillar, &[], 0.5, 0.3, 7);
+        let truth = Pose { x: 6.0, y: 3.5, theta: 0.2 };
+        let pts = sample(&walls, &truth, 0.05);
+        let params = IcpParams::default();
+        let split = information_by_owner(&pts, &truth, &map, &params);
+        assert_eq!(split.iter().map(|s| s.0).collect::<Vec<_>>(), vec![3, 7]);
+        // Each owner's pairs are the returns on its walls (from the definition: a return
+        // within the final gate of one of the owner's faces that the scanner sees, its foot
+        // inside the face; `end` more than `end` from the face's ends, as a return exactly at
+        // a corner may round off either face).
+        let on = |ws: &[[Point; 2]], end: f64| {
+            pts.iter()
+                .map(|&p| truth.apply(p))
+                .filter(|&q| {
+                    ws.iter().any(|w| {
+                        let (a, b) = (w[0], w[1]);
+                        let (dx, dy) = (b[0] - a[0], b[1] - a[1]);
+                        let t = ((q[0] - a[0]) * dx + (q[1] - a[1]) * dy) / (dx * dx + dy * dy);
+                        let l = dx.hypot(dy);
+                        dx * (truth.y - a[1]) - dy * (truth.x - a[0]) > 0.0
+                            && t * l >= end
+                            && (1.0 - t) * l >= end
+                            && segment_distance(q, a, b) <= params.gate_end
+                    })
+                })
+                .count()
+        };
+        for (k, ws) in [(0, outer), (1, pillar)] {
+            let (inside, all) = (on(ws, 1e-6), on(ws, -1e-6));
+            assert!(inside > 0 && inside <= split[k].2 && split[k].2 <= all, "{k}: {split:?}");
+        }
+        // The matrices add up to the whole alignment's information.
+        let whole = information(&pts, &truth, &map, &params);
+        for (i, row) in whole.iter().enumerate() {
+            for (j, &w) in row.iter().enumerate() {
+                let sum = split[0].1[i][j] + split[1].1[i][j];
+                assert!((sum - w).abs() <= 1e-9 * w.abs().max(1.0));
+            }
+        }
+        // Walls added without an owner are nobody's.
+        let mut plain = WallMap::new();
+        plain.extend(&walls);
+        let split = information_by_owner(&pts, &truth, &plain, &params);
+        assert_eq!(split.iter().map(|s| s.0).collect::<Vec<_>>(), vec![NO_OWNER]);
     }
 
     #[test]

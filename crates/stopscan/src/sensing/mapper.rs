@@ -8,7 +8,9 @@
 //!
 //! **Loop closure.** Every stop is a node of a [pose graph](super::posegraph). Odometry ties
 //! each stop to the one before (as sure as its drift over the metres driven); an aligned scan
-//! is tied by its alignment to the map to the nearest aligned stop, and matched on its own to
+//! is tied by its alignment to the map to the stops whose walls it paired with (each by the
+//! information of its own pairs: the map's walls remember the stop they were seen from), and
+//! matched on its own to
 //! the nearest [`MAX_LINKS`] earlier stops whose reach overlaps its own. A match that converged
 //! on [`LINK_MIN_PAIRS`] pairs becomes an edge when the graph can meet it without straining
 //! what it already holds (a scan slid along one stop's walls would, and so would a match that
@@ -220,15 +222,24 @@ impl Mapper {
             });
         }
         if aligned && k > 0 {
-            // The map's alignment, tied to the nearest aligned stop: a match to a single stop
-            // that disagrees with it must outweigh it.
-            if let Some(j) = self.nearest_aligned(&initial) {
-                let information = icp::information(&local.points, &initial, &self.map, &icp);
+            // The map's alignment, tied to the stops whose walls it paired with, each by the
+            // information of its own pairs: a match to a single stop that disagrees with it
+            // must outweigh it. (Tied to the nearest stop instead, an alignment to walls
+            // placed well would carry the error of a nearby stop placed badly, and hold it
+            // there against the loop closure that should move it.)
+            for (owner, information, _) in
+                icp::information_by_owner(&local.points, &initial, &self.map, &icp)
+            {
+                let j = owner as usize;
+                if j >= k {
+                    continue;
+                }
+                let from = self.graph.poses()[j];
                 self.graph.add_edge(Edge {
                     from: j,
                     to: k,
-                    measured: self.graph.poses()[j].inverse().compose(&initial),
-                    information: scaled(information, 1.0 / LINK_INFLATION),
+                    measured: from.inverse().compose(&initial),
+                    information: scaled(in_frame(information, from.theta), 1.0 / LINK_INFLATION),
                 });
             }
             links = self.link(k, &local.points, far, &initial, &icp);
@@ -330,15 +341,6 @@ impl Mapper {
         links
     }
 
-    /// The aligned stop nearest `at`, if any.
-    fn nearest_aligned(&self, at: &Pose) -> Option<usize> {
-        let poses = self.graph.poses();
-        (0..self.kept.len()).filter(|&j| self.kept[j].aligned).min_by(|&a, &b| {
-            let d = |j: usize| (poses[j].x - at.x).hypot(poses[j].y - at.y);
-            d(a).total_cmp(&d(b)).then(a.cmp(&b))
-        })
-    }
-
     /// Puts the newest stop's walls in the map; when the graph moved an earlier stop by more
     /// than [`REBUILD`], rebuilds the map from every aligned stop at its pose, oldest first.
     fn place_walls(&mut self) {
@@ -348,22 +350,23 @@ impl Mapper {
                 && ((s.placed.x - p.x).hypot(s.placed.y - p.y) > REBUILD
                     || wrap(s.placed.theta - p.theta).abs() > REBUILD_TURN)
         });
-        let place = |map: &mut WallMap, s: &Kept, at: &Pose| {
+        let place = |map: &mut WallMap, k: usize, s: &Kept, at: &Pose| {
             let placed = |w: &[[Point; 2]]| -> Vec<[Point; 2]> {
                 w.iter().map(|w| [at.apply(w[0]), at.apply(w[1])]).collect()
             };
-            map.extend_unseen(&placed(&s.walls), &placed(&s.bridges), MAP_PIECE, MAP_SAME_WALL);
+            let (walls, bridges) = (placed(&s.walls), placed(&s.bridges));
+            map.extend_unseen(&walls, &bridges, MAP_PIECE, MAP_SAME_WALL, k as u32);
         };
         if moved {
             self.map = WallMap::new();
-            for (s, p) in self.kept.iter_mut().zip(poses) {
+            for (k, (s, p)) in self.kept.iter_mut().zip(poses).enumerate() {
                 if s.aligned {
                     s.placed = *p;
-                    place(&mut self.map, s, p);
+                    place(&mut self.map, k, s, p);
                 }
             }
         } else if let Some(s) = self.kept.last().filter(|s| s.aligned) {
-            place(&mut self.map, s, &s.placed);
+            place(&mut self.map, self.kept.len() - 1, s, &s.placed);
         }
     }
 }
@@ -375,6 +378,18 @@ fn diagonal(sd: [f64; 3]) -> Information {
         m[k][k] = 1.0 / s.max(1e-9).powi(2);
     }
     m
+}
+
+/// `m` (information about an error in the map frame) about the same error in the frame of a
+/// pose turned by `theta`: `Rᵀ m R`, with `R` turning the position block by `theta`.
+fn in_frame(m: Information, theta: f64) -> Information {
+    let (c, s) = (theta.cos(), theta.sin());
+    let r = [[c, -s, 0.0], [s, c, 0.0], [0.0, 0.0, 1.0]];
+    std::array::from_fn(|i| {
+        std::array::from_fn(|j| {
+            (0..3).map(|a| (0..3).map(|b| r[a][i] * m[a][b] * r[b][j]).sum::<f64>()).sum()
+        })
+    })
 }
 
 /// `m` times `f`.
