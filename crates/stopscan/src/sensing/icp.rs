@@ -196,7 +196,7 @@ impl WallMap {
     /// when a segment of the same orientation runs within `tol` of its middle. A wall seen
     /// again from a pose that is a little off would otherwise stand in the map twice, and
     /// later scans would align to either copy. The pieces added are `owner`'s
-    /// ([`WallMap::pairs_by_owner`]).
+    /// ([`information_by_owner`]).
     pub fn extend_unseen(
         &mut self,
         walls: &[[Point; 2]],
