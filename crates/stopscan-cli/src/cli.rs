@@ -439,6 +439,15 @@ pub(crate) struct ExploreArgs {
         default_value_t = stopscan::pipeline::explore::DEFAULT_POCKET_CAP
     )]
     pub(crate) pocket_cap: f64,
+    /// The most the pockets --min-pocket leaves may hold in all, as a share of the area seen
+    /// so far: a part into a small pocket is closed only while the pockets left, with it,
+    /// hold less (so the backs of many desks cannot add up).
+    #[arg(
+        long,
+        allow_negative_numbers = true,
+        default_value_t = stopscan::pipeline::explore::DEFAULT_POCKET_BUDGET
+    )]
+    pub(crate) pocket_budget: f64,
     /// Compute the offline greedy reference for domains up to this many vertices.
     #[arg(long, default_value_t = 1000, allow_negative_numbers = true, value_parser = count_at_least(0))]
     pub(crate) greedy_max_vertices: usize,

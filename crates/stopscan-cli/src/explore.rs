@@ -54,6 +54,7 @@ fn options(a: &ExploreArgs, g: &Global) -> anyhow::Result<ExploreOptions> {
         min_window: a.min_window,
         min_pocket: a.min_pocket,
         pocket_cap: a.pocket_cap,
+        pocket_budget: a.pocket_budget,
         limits: ReferenceLimits {
             greedy_max_vertices: a.greedy_max_vertices,
             optimum_max_vertices: a.optimum_max_vertices,

@@ -70,6 +70,10 @@ pub struct SensorInfo {
     /// The largest pocket the rule may leave, square metres (absent: every pocket counts).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub pocket_cap: Option<f64>,
+    /// The most the pockets the rule leaves may hold in all, as a share of the area seen
+    /// (absent: every pocket counts, or each is judged alone).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub pocket_budget: Option<f64>,
     /// The window rule in words (absent: every window counts).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub window_rule: Option<String>,
@@ -118,6 +122,7 @@ impl SensorInfo {
             min_window: rule.then_some(sensor.min_window),
             min_pocket: sensor.has_pocket_term().then_some(sensor.min_pocket),
             pocket_cap: sensor.has_pocket_term().then_some(sensor.pocket_cap),
+            pocket_budget: sensor.pocket_budget.filter(|_| sensor.has_pocket_term()),
             window_rule: rule.then(|| sensor.rule()),
             windows_below_rule: rule.then_some(skipped.below_rule),
             windows_below_rule_length: rule.then_some(skipped.below_rule_length),

@@ -325,11 +325,14 @@ fn explore_with_a_footprint_and_a_window_rule() {
     assert_eq!(f(&r["sensor"], "min_window"), 0.4);
     assert_eq!(r["sensor"]["beams"], 720);
     assert!(r["sensor"]["window_rule"].as_str().unwrap().contains("d·2π/720"));
-    // The pocket term is on by default on a map: 0.5% of the area seen, at most 2 m².
+    // The pocket term is on by default on a map: 0.5% of the area seen, at most 2 m², and
+    // the pockets left hold at most 1% of it in all.
     assert_eq!(f(&r["sensor"], "min_pocket"), 0.005);
     assert_eq!(f(&r["sensor"], "pocket_cap"), 2.0);
+    assert_eq!(f(&r["sensor"], "pocket_budget"), 0.01);
     assert!(r["sensor"]["windows_into_small_pockets"].is_u64(), "{r}");
     assert!(r["sensor"]["window_rule"].as_str().unwrap().contains("(pocket_cap)"));
+    assert!(r["sensor"]["window_rule"].as_str().unwrap().contains("0.01 of the area seen"));
     // Without a footprint on a polygon, nothing is added to the record.
     let plain = json(&[
         "--out",
@@ -355,6 +358,8 @@ fn footprint_flags_are_checked() {
     fails(&["explore", "--env", &map, "--min-window", "-2"], &["--min-window", "-2"]);
     fails(&["explore", "--env", &map, "--min-pocket", "1.5"], &["--min-pocket", "1.5"]);
     fails(&["explore", "--env", &map, "--pocket-cap", "-1"], &["--pocket-cap", "-1"]);
+    fails(&["explore", "--env", &map, "--pocket-budget", "2"], &["--pocket-budget", "2"]);
+    fails(&["explore", "--env", &map, "--pocket-budget", "NaN"], &["--pocket-budget", "NaN"]);
     fails(&["explore", "--env", &map, "--beams", "0"], &["--beams"]);
     // A robot too big for the start the file gives.
     fails(

@@ -144,9 +144,11 @@ pub fn sweep_strategies(options: &ExploreOptions) -> Result<Vec<&'static str>, E
         || options.min_window.is_some()
         || options.min_pocket.is_some()
         || options.pocket_cap != super::explore::DEFAULT_POCKET_CAP
+        || options.pocket_budget != super::explore::DEFAULT_POCKET_BUDGET
     {
         return Err(ExploreError::RobotInSweep(
-            "a window rule (--beams, --min-feature, --min-window, --min-pocket, --pocket-cap)",
+            "a window rule (--beams, --min-feature, --min-window, --min-pocket, --pocket-cap, \
+             --pocket-budget)",
         ));
     }
     Ok(strategies)

@@ -193,7 +193,11 @@ impl Footprint {
 /// that is, a hole in the union of the scans' regions. A pocket is no larger than its hole,
 /// obstacle included, so a window part that opens into a hole smaller than `min_pocket`
 /// times the area seen so far, and smaller than `pocket_cap`, cannot hide more than that,
-/// and is not worth a trip. The cap keeps a small room in a large building a room.
+/// and is not worth a trip. The cap keeps a small room in a large building a room. The
+/// pockets the rule leaves share one budget, `pocket_budget` times the area seen: a part
+/// is closed only while the holes of every pocket left so far, this one included, hold less
+/// in all, so that many small pockets (the backs of every desk on a floor, slivers between
+/// noisy scans) cannot add up to more than the budget of what was seen.
 #[derive(Debug, Clone, Copy, Default, PartialEq, Serialize, Deserialize)]
 pub struct Sensor {
     /// The range, metres (`None`: unlimited).
@@ -211,6 +215,11 @@ pub struct Sensor {
     /// The largest pocket the rule may leave, square metres (`--pocket-cap`).
     #[serde(default)]
     pub pocket_cap: f64,
+    /// The most the pockets the rule leaves may hold in all, as a share of the area seen so
+    /// far (`--pocket-budget`; `None`: no total, each pocket judged alone, as before the
+    /// budget existed).
+    #[serde(default)]
+    pub pocket_budget: Option<f64>,
     /// How far apart two scans may place one wall, metres: range noise and pose error
     /// (0 for the exact sensor). A window part along which another scan saw a wall within
     /// this distance is closed: the wall was seen from elsewhere (a wall seen down a corridor
@@ -239,6 +248,17 @@ impl Sensor {
     /// `seen` square metres have been seen (0 without the pocket term).
     pub fn pocket_limit(&self, seen: f64) -> f64 {
         if self.has_pocket_term() { (self.min_pocket * seen).min(self.pocket_cap) } else { 0.0 }
+    }
+
+    /// The area the pockets the rule leaves may hold in all, when `seen` square metres have
+    /// been seen: `pocket_budget` of it, unbounded without a budget, 0 without the pocket
+    /// term.
+    pub fn pocket_allowance(&self, seen: f64) -> f64 {
+        if self.has_pocket_term() {
+            self.pocket_budget.map_or(f64::INFINITY, |b| b * seen)
+        } else {
+            0.0
+        }
     }
 
     /// Whether the rule has its pocket term (a share and a cap above 0).
@@ -274,8 +294,13 @@ impl Sensor {
             format!(
                 "{windows}, and when what lies behind it is not a pocket enclosed by what was \
                  seen smaller than both {} of the area seen so far (min_pocket) and {} m² \
-                 (pocket_cap)",
-                self.min_pocket, self.pocket_cap
+                 (pocket_cap){}",
+                self.min_pocket,
+                self.pocket_cap,
+                self.pocket_budget.map_or(String::new(), |b| format!(
+                    ", while the pockets left so far, this one included, hold less than {b} of \
+                     the area seen in all (pocket_budget)"
+                ))
             )
         } else {
             windows

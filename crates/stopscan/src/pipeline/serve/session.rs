@@ -8,7 +8,9 @@ use super::message::{
 };
 use super::roi::{Outcome, RoiRun};
 use crate::kernel::{Num, Point};
-use crate::pipeline::explore::{DEFAULT_POCKET_CAP, default_min_pocket, raw_scan_planning};
+use crate::pipeline::explore::{
+    DEFAULT_POCKET_BUDGET, DEFAULT_POCKET_CAP, default_min_pocket, raw_scan_planning,
+};
 use crate::protocol::corner::{AngleDistribution, CornerObservation, CornerSetup, Stop};
 use crate::protocol::laser::{InvalidScan, Pose};
 use crate::protocol::polygon::{Footprint, RobotSetup, Sensor};
@@ -513,6 +515,7 @@ impl PolygonRun {
                 min_window,
                 min_pocket: default_min_pocket(&footprint, None),
                 pocket_cap: DEFAULT_POCKET_CAP,
+                pocket_budget: Some(DEFAULT_POCKET_BUDGET),
                 wall_tolerance: 0.0,
             },
             footprint,

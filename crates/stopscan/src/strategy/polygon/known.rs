@@ -204,6 +204,10 @@ pub(super) struct Known {
     /// stuck there again, the strategy gives up.
     #[serde(default)]
     stuck_at: Vec<Point>,
+    /// A point just beyond each window part the rule's pocket term closed: the pockets that
+    /// hold one are those the rule left, whose areas share one budget.
+    #[serde(default)]
+    left_in_pockets: Vec<Point>,
     /// The union of the views' regions and its holes, for the sensor rule's pocket term:
     /// built on demand, and rebuilt from the views after deserialising.
     #[serde(skip)]
@@ -408,27 +412,28 @@ impl Known {
         self.footprint.planning_clearance(magnitude(&self.views[v].polygon))
     }
 
-    /// The area of the pocket just beyond the window part `p q` (on the side away from its
-    /// view's region, which lies left of its windows), with the area seen so far: `Some` when
-    /// the space there is a hole of the union of all views' regions, enclosed by what was
-    /// seen and so no larger than the hole; `None` when it opens onto the unbounded unseen
-    /// space.
-    fn pocket_beyond(&mut self, p: Point, q: Point) -> Option<(f64, f64)> {
+    /// The pocket just beyond the window part `p q` (on the side away from its view's region,
+    /// which lies left of its windows), with the point probed there: `Some` when the space
+    /// there is a hole of the union of all views' regions ([`Known::update_seen`]), enclosed
+    /// by what was seen and so no larger than the hole; `None` when it opens onto the
+    /// unbounded unseen space.
+    fn pocket_beyond(&mut self, p: Point, q: Point) -> Option<(usize, Point)> {
         self.update_seen();
         // A thousandth of the part's length beyond its middle.
         let m = [
             f64::midpoint(p[0], q[0]) + 1e-3 * (q[1] - p[1]),
             f64::midpoint(p[1], q[1]) - 1e-3 * (q[0] - p[0]),
         ];
-        self.seen
-            .pockets
-            .iter()
-            .find(|k| {
-                (k.bounds[0][0]..=k.bounds[1][0]).contains(&m[0])
-                    && (k.bounds[0][1]..=k.bounds[1][1]).contains(&m[1])
-                    && ring_side(&k.ring, m) == RingSide::Inside
-            })
-            .map(|k| (k.area, self.seen.area))
+        self.pocket_at(m).map(|k| (k, m))
+    }
+
+    /// The pocket (hole of the union of the views' regions) that holds `m`, if any.
+    fn pocket_at(&self, m: Point) -> Option<usize> {
+        self.seen.pockets.iter().position(|k| {
+            (k.bounds[0][0]..=k.bounds[1][0]).contains(&m[0])
+                && (k.bounds[0][1]..=k.bounds[1][1]).contains(&m[1])
+                && ring_side(&k.ring, m) == RingSide::Inside
+        })
     }
 
     /// Brings the union of the views' regions and its holes up to date with the views.
@@ -535,19 +540,40 @@ impl Known {
 
     /// The sensor rule's pocket term for the open part `gap` (at `pq`) of window `k` of
     /// `view`: when what lies behind it is enclosed by what was seen and smaller than the
-    /// rule's share of it and its cap, the part is closed and counted, and `true` returned.
+    /// rule's share of it and its cap, and the pockets left so far with this one hold less
+    /// than the rule's budget ([`Sensor::pocket_allowance`]), the part is closed and counted,
+    /// and `true` returned. Each pocket left is known by the point probed beyond its part,
+    /// and counted once at its hole's area now: a hole only shrinks as views are added, so
+    /// the pockets left hold no more than the budget granted when the last was left (a hole
+    /// that a later view splits is counted by the piece that holds the probed point).
     fn closed_as_pocket(&mut self, view: usize, k: usize, gap: [f64; 2], pq: [Point; 2]) -> bool {
         if !self.sensor.has_pocket_term() {
             return false;
         }
-        match self.pocket_beyond(pq[0], pq[1]) {
-            Some((pocket, seen)) if pocket < self.sensor.pocket_limit(seen) => {
-                self.skipped.small_pocket += 1;
-                self.close(view, k, gap);
-                true
-            }
-            _ => false,
+        let Some((pocket, probe)) = self.pocket_beyond(pq[0], pq[1]) else {
+            return false;
+        };
+        let seen = self.seen.area;
+        if self.seen.pockets[pocket].area >= self.sensor.pocket_limit(seen) {
+            return false;
         }
+        // The pockets the rule left so far, each counted once, with this one.
+        let mut left: Vec<usize> = self
+            .left_in_pockets
+            .iter()
+            .filter_map(|&z| self.pocket_at(z))
+            .chain([pocket])
+            .collect();
+        left.sort_unstable();
+        left.dedup();
+        let total: f64 = left.into_iter().map(|j| self.seen.pockets[j].area).sum();
+        if total >= self.sensor.pocket_allowance(seen) {
+            return false;
+        }
+        self.left_in_pockets.push(probe);
+        self.skipped.small_pocket += 1;
+        self.close(view, k, gap);
+        true
     }
 
     /// Records a scan, taken at the pending target (inside its view's region, which becomes
@@ -1743,16 +1769,22 @@ mod tests {
     /// The sensor rule has the pocket term with a share of 1 (no limit from the share) and
     /// the given cap.
     fn pillar_views(cap: f64) -> Known {
-        use crate::algorithm::visibility::Visibility;
-        use crate::geometry::Domain;
+        let sensor = Sensor { min_pocket: 1.0, pocket_cap: cap, ..Sensor::default() };
         let room = vec![[0.0, 0.0], [10.0, 0.0], [10.0, 10.0], [0.0, 10.0]];
         let pillar = vec![[4.5, 4.5], [4.5, 5.5], [5.5, 5.5], [5.5, 4.5]];
-        let vis = Visibility::new(Domain::new(room, vec![pillar]).unwrap()).unwrap();
-        let scan = |at: Point| PolygonObservation { at, region: vis.query(at).unwrap() };
-        let sensor = Sensor { min_pocket: 1.0, pocket_cap: cap, ..Sensor::default() };
+        views_of(room, vec![pillar], &[[1.0, 1.0], [9.0, 1.0]], sensor)
+    }
+
+    /// What a point robot with `sensor` knows after scanning the room `ring` with `holes`
+    /// from each of `ats` in turn.
+    fn views_of(ring: Vec<Point>, holes: Vec<Vec<Point>>, ats: &[Point], sensor: Sensor) -> Known {
+        use crate::algorithm::visibility::Visibility;
+        use crate::geometry::Domain;
+        let vis = Visibility::new(Domain::new(ring, holes).unwrap()).unwrap();
         let mut k = Known::for_robot(&RobotSetup { sensor, ..RobotSetup::default() });
-        k.add(&scan([1.0, 1.0]));
-        k.add(&scan([9.0, 1.0]));
+        for &at in ats {
+            k.add(&PolygonObservation { at, region: vis.query(at).unwrap() });
+        }
         k
     }
 
@@ -1936,7 +1968,8 @@ mod tests {
             probe.sensor = Sensor::default();
             if let Some((t, _)) = probe.window_target(v, w) {
                 let [p, q] = probe.gap_of(&t);
-                let (pocket, seen) = k.pocket_beyond(p, q).expect("a pocket behind the part");
+                let (j, _) = k.pocket_beyond(p, q).expect("a pocket behind the part");
+                let (pocket, seen) = (k.seen.pockets[j].area, k.seen.area);
                 assert!((pocket - exact).abs() < 1e-6, "pocket {pocket}, by hand {exact}");
                 assert!((seen - (100.0 - exact)).abs() < 1e-6, "seen {seen}");
                 open.push((v, w));
@@ -1951,6 +1984,79 @@ mod tests {
         let mut k = pillar_views(1.0);
         assert!(open.iter().all(|&(v, w)| k.window_target(v, w).is_some()));
         assert_eq!(k.skipped.small_pocket, 0);
+    }
+
+    #[test]
+    fn the_pockets_left_share_one_budget_of_the_area_seen() {
+        // Two pillars in a long room, each seen from two viewpoints below it: behind each, a
+        // pocket (the pillar and the wedge where its shadows meet). Each is below the
+        // per-pocket limit; the budget lets the rule leave one of them, not both.
+        let room = vec![[0.0, 0.0], [20.0, 0.0], [20.0, 10.0], [0.0, 10.0]];
+        let pillar = |x: f64| vec![[x - 0.5, 4.5], [x - 0.5, 5.5], [x + 0.5, 5.5], [x + 0.5, 4.5]];
+        let ats = [[1.0, 1.0], [9.0, 1.0], [11.0, 1.0], [19.0, 1.0]];
+        let known = |budget: Option<f64>| {
+            let sensor = Sensor {
+                min_pocket: 1.0,
+                pocket_cap: 5.0,
+                pocket_budget: budget,
+                ..Sensor::default()
+            };
+            views_of(room.clone(), vec![pillar(5.0), pillar(15.0)], &ats, sensor)
+        };
+        // Brute force from the definition: the grid points of each half of the room that no
+        // view's region holds (the pillar's own area included, as a hole's area is).
+        let k = known(None);
+        let step = 0.01;
+        let mut unseen = [0usize; 2];
+        for i in 0..2000 {
+            for j in 0..1000 {
+                let p = [(f64::from(i) + 0.5) * step, (f64::from(j) + 0.5) * step];
+                if k.views.iter().all(|v| ring_side(&v.polygon, p) == RingSide::Outside) {
+                    unseen[usize::from(p[0] > 10.0)] += 1;
+                }
+            }
+        }
+        let area = unseen.map(|n| n as f64 * step * step);
+        let seen = 200.0 - area[0] - area[1];
+        assert!(area.iter().all(|&a| a > 1.0 && a < 5.0), "{area:?}");
+        // The open parts, and the pocket (left or right half) each leads into.
+        let parts: Vec<(usize, usize, usize)> = {
+            let mut probe = k.clone();
+            probe.sensor = Sensor::default();
+            (0..4)
+                .flat_map(|v| (0..k.views[v].windows.len()).map(move |w| (v, w)))
+                .filter_map(|(v, w)| {
+                    let (t, _) = probe.window_target(v, w)?;
+                    let [p, q] = probe.gap_of(&t);
+                    Some((v, w, usize::from(p[0] + q[0] > 20.0)))
+                })
+                .collect()
+        };
+        assert!((0..2).all(|h| parts.iter().any(|x| x.2 == h)), "{parts:?}");
+        // Which pockets the rule leaves, under a budget (a share of the area seen).
+        let left = |budget: Option<f64>| {
+            let mut k = known(budget);
+            let open: Vec<usize> = parts
+                .iter()
+                .filter(|&&(v, w, _)| k.window_target(v, w).is_some())
+                .map(|x| x.2)
+                .collect();
+            let left: Vec<usize> = (0..2).filter(|h| !open.contains(h)).collect();
+            (left, k.skipped.small_pocket)
+        };
+        let per_half = |h: usize| parts.iter().filter(|x| x.2 == h).count();
+        // No budget, or one that holds both: both are left, every part counted.
+        assert_eq!(left(None), (vec![0, 1], parts.len()));
+        let both = (area[0] + area[1]) / seen;
+        assert_eq!(left(Some(1.01 * both)), (vec![0, 1], parts.len()));
+        // A budget between the larger pocket and both: the first asked for is left, alone.
+        let one = 0.5 * (area[0].max(area[1]) + area[0] + area[1]) / seen;
+        let (got, counted) = left(Some(one));
+        assert_eq!(got.len(), 1, "{got:?}");
+        assert_eq!(counted, per_half(got[0]));
+        assert!(area[got[0]] < one * seen);
+        // A budget below either pocket: none is left.
+        assert_eq!(left(Some(0.99 * area[0].min(area[1]) / seen)), (vec![], 0));
     }
 
     #[test]
