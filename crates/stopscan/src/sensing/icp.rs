@@ -9,7 +9,8 @@
 //!
 //! **Degenerate geometry.** The normal equations' matrix, with the rotation scaled by the
 //! returns' spread about the robot so that all three axes are in metres, has an eigenvalue
-//! near zero along a motion the walls do not constrain (along a featureless corridor). Only
+//! near zero along a motion the walls do not constrain (along a featureless corridor; or a
+//! shift coupled with a turn, as about the centre of a round pillar seen alone). Only
 //! the well-constrained directions are corrected; along the others the pose stays where
 //! odometry put it, and the result says so. A result with too few pairs, a large residual, an
 //! implausible correction, or one that puts many returns beyond walls already mapped (a
@@ -474,6 +475,7 @@ fn align_from(
         / points.len().max(1) as f64)
         .sqrt()
         .max(1.0);
+    let mut free: Option<[f64; 3]> = None;
     for it in 0..params.max_iterations {
         out.iterations = it + 1;
         let (mut h, mut g, pairs, sq) = normal_equations(points, &pose, map, gate, params, lever);
@@ -494,8 +496,9 @@ fn align_from(
                 g[k] += w * o;
             }
         }
-        let (step, degenerate) = solve(h, g, params.degenerate_ratio);
+        let (step, degenerate, weak) = solve(h, g, params.degenerate_ratio);
         out.degenerate = degenerate;
+        free = weak;
         let (dx, dy, dth) = (step[0], step[1], step[2] / lever);
         // Rotate about the scanner's position, then shift.
         pose = Pose { x: pose.x + dx, y: pose.y + dy, theta: wrap(pose.theta + dth) };
@@ -506,12 +509,17 @@ fn align_from(
         }
         gate = (gate * 0.7).max(params.gate_end);
     }
-    // Along a direction the walls leave free, the pose is odometry's: early iterations, with
-    // a wide gate, may have pushed it there on pairs that were wrong.
-    if let Some(d) = out.degenerate {
-        let along = (pose.x - guess.x) * d[0] + (pose.y - guess.y) * d[1];
-        pose.x -= along * d[0];
-        pose.y -= along * d[1];
+    // Along the motion the walls leave free, the pose is odometry's: early iterations, with
+    // a wide gate, may have pushed it there on pairs that were wrong. That motion may couple
+    // a shift with a turn (a round pillar seen alone leaves the turn about its centre free),
+    // so the whole correction's part along it is undone, turn included: undoing only its
+    // shift would move the scanner off the walls along the turn the walls had fixed.
+    if let Some(v) = free {
+        let off = [pose.x - guess.x, pose.y - guess.y, wrap(pose.theta - guess.theta) * lever];
+        let along = off[0] * v[0] + off[1] * v[1] + off[2] * v[2];
+        pose.x -= along * v[0];
+        pose.y -= along * v[1];
+        pose.theta = wrap(pose.theta - along * v[2] / lever);
     }
     out.pose = pose;
     let margin = CROSSING_MARGIN.max(5.0 * params.sigma);
@@ -640,12 +648,14 @@ fn for_each_pair(
 }
 
 /// The step `h⁻¹ g` in the eigen-directions whose eigenvalue is above `ratio` of the
-/// largest, and the translation part of an unconstrained direction, if there is one.
-fn solve(h: [[f64; 3]; 3], g: [f64; 3], ratio: f64) -> ([f64; 3], Option<Point>) {
+/// largest, and an unconstrained direction with a translation part, if there is one: that
+/// part (unit) and the whole direction, `(dx, dy, dθ·lever)` (unit).
+fn solve(h: [[f64; 3]; 3], g: [f64; 3], ratio: f64) -> ([f64; 3], Option<Point>, Option<[f64; 3]>) {
     let (vals, vecs) = jacobi_eigen(h);
     let top = vals.iter().copied().fold(0.0, f64::max);
     let mut step = [0.0; 3];
     let mut degenerate = None;
+    let mut weak = None;
     for (k, &val) in vals.iter().enumerate() {
         let v = [vecs[0][k], vecs[1][k], vecs[2][k]];
         if val <= ratio * top {
@@ -653,6 +663,7 @@ fn solve(h: [[f64; 3]; 3], g: [f64; 3], ratio: f64) -> ([f64; 3], Option<Point>)
             let t = v[0].hypot(v[1]);
             if t > 0.5 {
                 degenerate = Some([v[0] / t, v[1] / t]);
+                weak = Some(v);
             }
             continue;
         }
@@ -661,7 +672,7 @@ fn solve(h: [[f64; 3]; 3], g: [f64; 3], ratio: f64) -> ([f64; 3], Option<Point>)
             *s += coef * vi;
         }
     }
-    (step, degenerate)
+    (step, degenerate, weak)
 }
 
 /// Eigenvalues and eigenvectors (as columns) of a symmetric 3×3 matrix, by cyclic Jacobi
@@ -856,6 +867,51 @@ mod tests {
         // Across the corridor and in heading, corrected; along it, odometry's x kept.
         assert!((a.pose.y - 1.0).abs() < 1e-4 && a.pose.theta.abs() < 1e-4, "{a:?}");
         assert!((a.pose.x - 0.3).abs() < 0.05, "{a:?}");
+    }
+
+    #[test]
+    fn a_round_pillar_keeps_odometry_along_the_turn_about_its_centre() {
+        // Seen alone, a round pillar cannot tell the scanner's turn about its centre: the
+        // free motion is a shift across the sight line coupled with a turn. The distance to
+        // the pillar is still corrected, and the returns land on it.
+        let (c, r, n) = ([5.0, 0.0], 1.0, 64);
+        let ring: Vec<Point> = (0..n)
+            .map(|i| {
+                // Clockwise: the free side of each face is outside the pillar.
+                let a = -std::f64::consts::TAU * f64::from(i) / f64::from(n);
+                [c[0] + r * a.cos(), c[1] + r * a.sin()]
+            })
+            .collect();
+        let walls: Vec<[Point; 2]> =
+            (0..ring.len()).map(|i| [ring[i], ring[(i + 1) % n as usize]]).collect();
+        let mut map = WallMap::new();
+        map.extend(&walls);
+        let truth = Pose { x: 0.0, y: 0.0, theta: 0.0 };
+        let pts = sample(&walls, &truth, 0.02);
+        // Odometry: turned 0.03 rad about the centre (the free motion), 0.1 m too near, and
+        // turned 0.05 rad more about the scanner (half free, half seen).
+        let d = 0.03f64;
+        let (s, co) = d.sin_cos();
+        let guess = Pose { x: c[0] - 4.9 * co, y: c[1] - 4.9 * s, theta: d + 0.05 };
+        let a = align(&pts, &guess, None, &map, &IcpParams::default());
+        assert!(a.degenerate.is_some() && a.fallback.is_none(), "{a:?}");
+        // From the definition: every return, placed where ICP put the scanner, lies on the
+        // pillar's faces (within the faces' own sag from the circle, and the solver's rest).
+        let worst = pts
+            .iter()
+            .map(|&p| {
+                let q = a.pose.apply(p);
+                walls.iter().map(|w| segment_distance(q, w[0], w[1])).fold(f64::INFINITY, f64::min)
+            })
+            .fold(0.0, f64::max);
+        assert!(worst < 0.005, "returns {worst} m off the pillar: {a:?}");
+        // The distance to the centre is corrected, the scanner faces the centre as it did,
+        // and the turn about the centre is between odometry's two turns.
+        let dist = (a.pose.x - c[0]).hypot(a.pose.y - c[1]);
+        assert!((dist - 5.0).abs() < 0.005, "{dist}: {a:?}");
+        let bearing = (c[1] - a.pose.y).atan2(c[0] - a.pose.x);
+        assert!((a.pose.theta - bearing).abs() < 0.002, "{bearing}: {a:?}");
+        assert!(bearing > d - 0.002 && bearing < d + 0.052, "{bearing}: {a:?}");
     }
 
     #[test]
