@@ -146,12 +146,21 @@ pub struct Mapper {
     map: WallMap,
     kept: Vec<Kept>,
     graph: PoseGraph,
+    /// Metres driven since the last stop whose alignment was kept (or the first stop): the
+    /// stops between kept odometry's pose, so its drift since then is still in the estimate.
+    unaligned: f64,
 }
 
 impl Mapper {
     /// An empty map.
     pub fn new(params: MapperParams) -> Self {
-        Self { params, map: WallMap::new(), kept: Vec::new(), graph: PoseGraph::new() }
+        Self {
+            params,
+            map: WallMap::new(),
+            kept: Vec::new(),
+            graph: PoseGraph::new(),
+            unaligned: 0.0,
+        }
     }
 
     /// The parameters.
@@ -185,16 +194,19 @@ impl Mapper {
         let p = &self.params;
         // Read in the scanner's frame, aligned, then placed at the estimate.
         let local = ingest(scan, &Pose::default(), &p.ingest)?;
+        // Odometry may be off by its drift over every metre since the last stop whose
+        // alignment was kept: a stop that kept odometry's pose corrected nothing.
+        let driven_since = self.unaligned + driven;
         let prior = Prior {
-            position: (p.drift * driven).max(MIN_PRIOR.position),
-            heading: (p.heading_drift * driven).max(MIN_PRIOR.heading),
+            position: (p.drift * driven_since).max(MIN_PRIOR.position),
+            heading: (p.heading_drift * driven_since).max(MIN_PRIOR.heading),
         };
         // A correction is plausible within three standard deviations of how far odometry may
         // be off: its position error, and the heading error made on the way turning every
         // metre after it (about `heading_drift · d² / 2` across the direction of travel, for a
         // trip of several legs between scans). Never less than a mapped wall's own tolerance.
-        let heading = p.heading_drift * driven;
-        let reach = (p.drift * driven).hypot(heading * driven / 2.0);
+        let heading = p.heading_drift * driven_since;
+        let reach = (p.drift * driven_since).hypot(heading * driven_since / 2.0);
         let icp = IcpParams {
             max_shift: (3.0 * std::f64::consts::SQRT_2 * reach).max(MIN_PLAUSIBLE_SHIFT),
             max_turn: (3.0 * heading).max(MIN_PLAUSIBLE_TURN),
@@ -203,6 +215,7 @@ impl Mapper {
         let alignment = (!self.map.is_empty())
             .then(|| icp::align(&local.points, odometry, Some(prior), &self.map, &icp));
         let aligned = alignment.as_ref().is_none_or(|a| a.fallback.is_none());
+        self.unaligned = if aligned { 0.0 } else { driven_since };
         let initial = alignment.as_ref().map_or(*odometry, |a| a.pose);
         let mut own = WallMap::new();
         own.extend(&local.walls);
@@ -212,8 +225,11 @@ impl Mapper {
         let k = self.graph.add_node(initial);
         let mut links = 0;
         if let Some(last) = self.kept.last() {
-            // Odometry since the last stop, as sure as the prior ICP was given.
-            let sd = [reach.max(prior.position), reach.max(prior.position), prior.heading];
+            // Odometry since the last stop, as sure as its drift over this leg alone.
+            let turn = p.heading_drift * driven;
+            let leg = (p.drift * driven).hypot(turn * driven / 2.0);
+            let position = leg.max((p.drift * driven).max(MIN_PRIOR.position));
+            let sd = [position, position, turn.max(MIN_PRIOR.heading)];
             self.graph.add_edge(Edge {
                 from: k - 1,
                 to: k,
