@@ -496,8 +496,12 @@ fn align_from(
                 g[k] += w * o;
             }
         }
-        let (step, degenerate, weak) = solve(h, g, params.degenerate_ratio);
-        out.degenerate = degenerate;
+        let (step, weak) = solve(h, g, params.degenerate_ratio);
+        // Report the free motion's shift (the motion odometry keeps).
+        out.degenerate = weak.map(|v| {
+            let t = v[0].hypot(v[1]);
+            [v[0] / t, v[1] / t]
+        });
         free = weak;
         let (dx, dy, dth) = (step[0], step[1], step[2] / lever);
         // Rotate about the scanner's position, then shift.
@@ -648,21 +652,17 @@ fn for_each_pair(
 }
 
 /// The step `h⁻¹ g` in the eigen-directions whose eigenvalue is above `ratio` of the
-/// largest, and an unconstrained direction with a translation part, if there is one: that
-/// part (unit) and the whole direction, `(dx, dy, dθ·lever)` (unit).
-fn solve(h: [[f64; 3]; 3], g: [f64; 3], ratio: f64) -> ([f64; 3], Option<Point>, Option<[f64; 3]>) {
+/// largest, and an unconstrained direction mostly a shift, if there is one, as
+/// `(dx, dy, dθ·lever)` (unit).
+fn solve(h: [[f64; 3]; 3], g: [f64; 3], ratio: f64) -> ([f64; 3], Option<[f64; 3]>) {
     let (vals, vecs) = jacobi_eigen(h);
     let top = vals.iter().copied().fold(0.0, f64::max);
     let mut step = [0.0; 3];
-    let mut degenerate = None;
     let mut weak = None;
     for (k, &val) in vals.iter().enumerate() {
         let v = [vecs[0][k], vecs[1][k], vecs[2][k]];
         if val <= ratio * top {
-            // Unconstrained: report its translation part (the motion odometry keeps).
-            let t = v[0].hypot(v[1]);
-            if t > 0.5 {
-                degenerate = Some([v[0] / t, v[1] / t]);
+            if v[0].hypot(v[1]) > 0.5 {
                 weak = Some(v);
             }
             continue;
@@ -672,7 +672,7 @@ fn solve(h: [[f64; 3]; 3], g: [f64; 3], ratio: f64) -> ([f64; 3], Option<Point>,
             *s += coef * vi;
         }
     }
-    (step, degenerate, weak)
+    (step, weak)
 }
 
 /// Eigenvalues and eigenvectors (as columns) of a symmetric 3×3 matrix, by cyclic Jacobi

@@ -197,19 +197,12 @@ impl Mapper {
         // Odometry may be off by its drift over every metre since the last stop whose
         // alignment was kept: a stop that kept odometry's pose corrected nothing.
         let driven_since = self.unaligned + driven;
-        let prior = Prior {
-            position: (p.drift * driven_since).max(MIN_PRIOR.position),
-            heading: (p.heading_drift * driven_since).max(MIN_PRIOR.heading),
-        };
+        let (prior, reach) = odometry_spread(p, driven_since);
         // A correction is plausible within three standard deviations of how far odometry may
-        // be off: its position error, and the heading error made on the way turning every
-        // metre after it (about `heading_drift · d² / 2` across the direction of travel, for a
-        // trip of several legs between scans). Never less than a mapped wall's own tolerance.
-        let heading = p.heading_drift * driven_since;
-        let reach = (p.drift * driven_since).hypot(heading * driven_since / 2.0);
+        // be off. Never less than a mapped wall's own tolerance.
         let icp = IcpParams {
             max_shift: (3.0 * std::f64::consts::SQRT_2 * reach).max(MIN_PLAUSIBLE_SHIFT),
-            max_turn: (3.0 * heading).max(MIN_PLAUSIBLE_TURN),
+            max_turn: (3.0 * prior.heading).max(MIN_PLAUSIBLE_TURN),
             ..p.icp
         };
         let alignment = (!self.map.is_empty())
@@ -226,10 +219,8 @@ impl Mapper {
         let mut links = 0;
         if let Some(last) = self.kept.last() {
             // Odometry since the last stop, as sure as its drift over this leg alone.
-            let turn = p.heading_drift * driven;
-            let leg = (p.drift * driven).hypot(turn * driven / 2.0);
-            let position = leg.max((p.drift * driven).max(MIN_PRIOR.position));
-            let sd = [position, position, turn.max(MIN_PRIOR.heading)];
+            let (leg, reach) = odometry_spread(p, driven);
+            let sd = [reach.max(leg.position), reach.max(leg.position), leg.heading];
             self.graph.add_edge(Edge {
                 from: k - 1,
                 to: k,
@@ -406,6 +397,20 @@ fn in_frame(m: Information, theta: f64) -> Information {
             (0..3).map(|a| (0..3).map(|b| r[a][i] * m[a][b] * r[b][j]).sum::<f64>()).sum()
         })
     })
+}
+
+/// How far odometry may be off after driving `metres`: one standard deviation of its position
+/// (per axis) and heading error, at least [`MIN_PRIOR`]; and the reach of its position error
+/// with the heading error made on the way turning every metre after it (about
+/// `heading_drift · d² / 2` across the direction of travel, for a trip of several legs).
+fn odometry_spread(p: &MapperParams, metres: f64) -> (Prior, f64) {
+    let heading = p.heading_drift * metres;
+    let reach = (p.drift * metres).hypot(heading * metres / 2.0);
+    let prior = Prior {
+        position: (p.drift * metres).max(MIN_PRIOR.position),
+        heading: heading.max(MIN_PRIOR.heading),
+    };
+    (prior, reach)
 }
 
 /// `m` times `f`.

@@ -230,6 +230,9 @@ struct Pocket {
     ring: Vec<Point>,
     bounds: [Point; 2],
     area: f64,
+    /// Whether the rule's pocket term left it: it holds a point of
+    /// [`Known::left_in_pockets`].
+    left: bool,
 }
 
 impl PartialEq for Seen {
@@ -456,8 +459,14 @@ impl Known {
                     ring: h.clone(),
                     bounds: cover::bounds_of(h),
                     area: crate::geometry::signed_area_of(h).abs(),
+                    left: false,
                 })
                 .collect();
+            for i in 0..self.left_in_pockets.len() {
+                if let Some(k) = self.pocket_at(self.left_in_pockets[i]) {
+                    self.seen.pockets[k].left = true;
+                }
+            }
         }
     }
 
@@ -558,19 +567,15 @@ impl Known {
             return false;
         }
         // The pockets the rule left so far, each counted once, with this one.
-        let mut left: Vec<usize> = self
-            .left_in_pockets
-            .iter()
-            .filter_map(|&z| self.pocket_at(z))
-            .chain([pocket])
-            .collect();
-        left.sort_unstable();
-        left.dedup();
-        let total: f64 = left.into_iter().map(|j| self.seen.pockets[j].area).sum();
+        let total: f64 = (self.seen.pockets.iter().enumerate())
+            .filter(|&(j, k)| k.left || j == pocket)
+            .map(|(_, k)| k.area)
+            .sum();
         if total >= self.sensor.pocket_allowance(seen) {
             return false;
         }
         self.left_in_pockets.push(probe);
+        self.seen.pockets[pocket].left = true;
         self.skipped.small_pocket += 1;
         self.close(view, k, gap);
         true
