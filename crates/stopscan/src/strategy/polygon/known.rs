@@ -84,11 +84,6 @@ struct Window {
     /// the exploration ends.
     #[serde(default)]
     no_junction: bool,
-    /// Raw scans: the window is a gap between returns on one wall line (a wall seen at a
-    /// grazing angle), not an occlusion ([`on_wall_line`]): a wall another scan saw along it
-    /// closes it within the wider [`Known::line_tolerance`].
-    #[serde(default)]
-    on_line: bool,
 }
 
 /// A next viewpoint and the part of a window it is for.
@@ -401,15 +396,6 @@ impl Known {
         self.sensor.wall_tolerance > 0.0
     }
 
-    /// How far apart two scans may place one wall along a window that is a gap on a wall
-    /// line (raw scans): the sensor's [`wall_tolerance`](Sensor::wall_tolerance) plus
-    /// [`LINE_POSE_ALLOWANCE`](crate::protocol::polygon::LINE_POSE_ALLOWANCE): the two scans'
-    /// poses are each only as good as their alignment, and a gap seen at a grazing angle is
-    /// closed by the wall seen from nearer.
-    pub(super) fn line_tolerance(&self) -> f64 {
-        self.sensor.wall_tolerance + crate::protocol::polygon::LINE_POSE_ALLOWANCE
-    }
-
     /// The clearance planned moves keep near view `v` (0 for a point robot).
     pub(super) fn clearance(&self, v: usize) -> f64 {
         self.footprint.planning_clearance(magnitude(&self.views[v].polygon))
@@ -633,8 +619,6 @@ impl Known {
                         checked: 0,
                         range_frontier,
                         no_junction: false,
-                        on_line: sensor.wall_tolerance > 0.0
-                            && on_wall_line(&obs.region.boundary, piece, sensor.wall_tolerance),
                     })
                 }
                 _ => None,
@@ -687,11 +671,7 @@ impl Known {
         };
         if checked < n {
             let mut covered = std::mem::take(&mut self.views[view].windows[k].covered);
-            let tol = if self.views[view].windows[k].on_line {
-                self.line_tolerance()
-            } else {
-                self.sensor.wall_tolerance
-            };
+            let tol = self.sensor.cover_band();
             for (j, v) in self.views.iter().enumerate().skip(checked) {
                 if j != view {
                     cover::side_cover(from, to, &v.polygon, v.bounds, &mut covered);
@@ -1567,30 +1547,6 @@ fn uncover(covered: &Intervals, gap: [f64; 2]) -> Intervals {
     out
 }
 
-/// Whether window piece `piece` of a raw scan's region is a gap between returns on one wall
-/// line: both its ends lie within `tol` of the line of the wall that the windows next to it
-/// lead to, before or after it (a chain of such gaps is a wall seen at a grazing angle). An
-/// occlusion's window runs from the occluding corner off the wall's line, and is not one.
-fn on_wall_line(pieces: &[BoundaryPiece], piece: usize, tol: f64) -> bool {
-    let BoundaryPiece::Window { from, to, .. } = pieces[piece] else { return false };
-    let n = pieces.len();
-    let side = |forward: bool| {
-        (1..n)
-            .map(|i| if forward { (piece + i) % n } else { (piece + n - i) % n })
-            .map(|j| &pieces[j])
-            .find(|b| !matches!(b, BoundaryPiece::Window { .. }))
-    };
-    [side(false), side(true)].into_iter().flatten().any(|b| match *b {
-        BoundaryPiece::Wall { from: p, to: q } => {
-            let (dx, dy) = (q[0] - p[0], q[1] - p[1]);
-            let len = dx.hypot(dy);
-            let off = |x: Point| (dx * (x[1] - p[1]) - dy * (x[0] - p[0])).abs() / len;
-            len > 2.0 * tol && off(from) <= tol && off(to) <= tol
-        }
-        _ => false,
-    })
-}
-
 /// The length of the window segment `p q` seen from `at` if the sensor's rule finds it too
 /// short to be worth a trip ([`Sensor::min_window_at`] its near end's distance), `None` if it
 /// is worth one.
@@ -1865,7 +1821,7 @@ mod tests {
             [13.0, 0.5 + y],
             &[([8.5, y], wall), ([17.5, y], gap), ([17.5, 2.0], gap), ([8.5, 2.0], gap)],
         ));
-        // Along the occlusion from (17.67, 4) to (6, 2.6), 0.15 m to its near side.
+        // Along the occlusion from (17.67, 4) to (6, 2.6), `offset` to its near side.
         let (a, b) = ([17.67, 4.0], [6.0, 2.6]);
         let (dx, dy) = (b[0] - a[0], b[1] - a[1]);
         let len = f64::hypot(dx, dy);
@@ -1874,8 +1830,8 @@ mod tests {
         k.add(&raw_region(
             at(0.5, 1.0),
             &[
-                (at(0.8, 0.15), wall),
-                (at(0.02, 0.15), gap),
+                (at(0.8, offset), wall),
+                (at(0.02, offset), gap),
                 (at(0.02, 1.5), gap),
                 (at(0.8, 1.5), gap),
             ],
@@ -1884,41 +1840,50 @@ mod tests {
     }
 
     #[test]
-    fn gaps_on_a_wall_line_are_told_from_occlusions_and_closed_across_pose_errors() {
+    fn window_parts_are_closed_by_walls_seen_within_two_pose_errors() {
+        // The band, from the definition: range noise (0.07 m) and two poses' errors (0.1 m
+        // each).
         let k = grazing_views(0.15);
-        // From the definition: a gap on a wall line has both ends on the hall's bottom wall
-        // (y = 0); the box's occlusions run from a corner off any wall's line.
-        let first = &k.views[0];
-        let on_bottom: Vec<bool> =
-            first.windows.iter().map(|w| w.from[1] == 0.0 && w.to[1] == 0.0).collect();
-        assert_eq!(on_bottom.iter().filter(|&&b| b).count(), 5);
-        assert_eq!(on_bottom.len(), 7);
-        for (w, &want) in first.windows.iter().zip(&on_bottom) {
-            assert_eq!(w.on_line, want, "{:?} to {:?}", w.from, w.to);
-        }
-        // The second scan sees the bottom wall whole from x = 8.5 to 17.5, placed 0.15 m off:
-        // beyond the wall tolerance, within the line tolerance. The gaps there are closed;
-        // placed 0.3 m off they stay open, as they do with an exact sensor's tolerance.
-        let within = |w: &Window| {
-            w.on_line && w.from[0].min(w.to[0]) >= 8.5 && w.from[0].max(w.to[0]) <= 17.5
+        assert!((k.sensor.cover_band() - 0.27).abs() < 1e-12);
+        // The second scan sees the hall's bottom wall whole from x = 8.5 to 17.5, and the
+        // third a wall beside the box's occlusion from 2% to 80% of the way from (17.67, 4) to
+        // (6, 2.6), each placed 0.15 m off: beyond the noise, within the band. The first
+        // scan's gaps between returns on the bottom wall (both ends on y = 0) there are
+        // closed; placed 0.3 m off, they stay open, as they do with an exact sensor.
+        let gaps = |k: &Known| -> Vec<usize> {
+            (0..k.views[0].windows.len())
+                .filter(|&i| {
+                    let w = &k.views[0].windows[i];
+                    w.from[1] == 0.0
+                        && w.to[1] == 0.0
+                        && w.from[0].min(w.to[0]) >= 8.5
+                        && w.from[0].max(w.to[0]) <= 17.5
+                })
+                .collect()
         };
         let open_parts = |mut k: Known| {
-            let ws: Vec<usize> =
-                (0..k.views[0].windows.len()).filter(|&i| within(&k.views[0].windows[i])).collect();
-            ws.into_iter().map(|i| k.window_target(0, i).is_some()).collect::<Vec<bool>>()
+            gaps(&k).into_iter().map(|i| k.window_target(0, i).is_some()).collect::<Vec<bool>>()
         };
+        assert_eq!(gaps(&k).len(), 4);
         assert_eq!(open_parts(k.clone()), vec![false; 4]);
         assert_eq!(open_parts(grazing_views(0.3)), vec![true; 4]);
-        // The occlusion with a wall 0.15 m beside it keeps the narrow band and stays open.
+        // The occlusion is closed where the wall runs beside it; what is left before that (2%
+        // of its 11.75 m) is below the rule's 0.4 m, and what is left beyond stays open.
+        let occlusion_of = |k: &Known| {
+            (0..k.views[0].windows.len()).find(|&i| k.views[0].windows[i].from == [17.67, 4.0])
+        };
         let mut k = k;
-        let occlusion = (0..k.views[0].windows.len())
-            .find(|&i| k.views[0].windows[i].from == [17.67, 4.0])
-            .unwrap();
-        assert!(!k.views[0].windows[occlusion].on_line);
-        assert!(k.window_target(0, occlusion).is_some());
-        assert_eq!(k.views[0].windows[occlusion].covered, Vec::<[f64; 2]>::new());
-        let tol = k.line_tolerance() - k.sensor.wall_tolerance;
-        assert_eq!(tol, crate::protocol::polygon::LINE_POSE_ALLOWANCE);
+        let occlusion = occlusion_of(&k).unwrap();
+        let (t, _) = k.window_target(0, occlusion).unwrap();
+        let near = |a: f64, b: f64| (a - b).abs() < 1e-9;
+        assert!(near(t.gap[0], 0.8) && near(t.gap[1], 1.0), "{:?}", t.gap);
+        let covered = &k.views[0].windows[occlusion].covered;
+        assert!(covered.len() == 1 && near(covered[0][0], 0.0) && near(covered[0][1], 0.8));
+        // 0.3 m off, nothing of it is closed.
+        let mut far = grazing_views(0.3);
+        let occlusion = occlusion_of(&far).unwrap();
+        let (t, _) = far.window_target(0, occlusion).unwrap();
+        assert_eq!(t.gap, [0.0, 1.0]);
     }
 
     #[test]
