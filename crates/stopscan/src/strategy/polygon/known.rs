@@ -709,9 +709,16 @@ impl Known {
             // shorter than the sensor resolves from the view is not worth a trip.
             let p = [from[0] + gap[0] * dx, from[1] + gap[0] * dy];
             let q = [from[0] + gap[1] * dx, from[1] + gap[1] * dy];
+            // A lifted window ([`reopen_wide_openings`](Self::reopen_wide_openings)) is part
+            // of an opening wider than the rule, so the rule's width is lifted for it; what
+            // the sensor resolves is not: a part shorter than the beams' spacing at its
+            // distance (a sliver between two noisy scans' regions) is not worth a trip.
+            let rule = match w.lift {
+                Lift::Lifted => Sensor { min_window: 0.0, ..self.sensor },
+                _ => self.sensor,
+            };
             if !w.range_frontier
-                && w.lift != Lift::Lifted
-                && let Some(len) = below_rule(&self.sensor, self.views[view].at, p, q)
+                && let Some(len) = below_rule(&rule, self.views[view].at, p, q)
             {
                 self.skipped.below_rule += 1;
                 self.skipped.below_rule_length += len;
@@ -792,10 +799,10 @@ impl Known {
     /// a corridor) may be left as a short open part of each of several windows, each below the
     /// rule. This looks at the frontier of everything seen (the boundary of the union of the
     /// views' regions that lies on their windows) and opens again the parts the rule closed
-    /// along every chain of it at least `min_window` long; the rule is then lifted for their
-    /// windows until a scan is taken for one of their parts, so each window is reopened at
-    /// most once, visited at most once under the lift, and the exploration ends. Returns
-    /// whether any part was opened.
+    /// along every chain of it at least `min_window` long; the rule's width is then lifted for
+    /// their windows until a scan is taken for one of their parts (what the beams resolve
+    /// still applies), so each window is reopened at most once, visited at most once under the
+    /// lift, and the exploration ends. Returns whether any part was opened.
     pub(super) fn reopen_wide_openings(&mut self) -> bool {
         let need = self.sensor.min_window_at(0.0);
         if self.sensor.excludes_nothing() || self.views.is_empty() {
@@ -2137,6 +2144,43 @@ mod tests {
         let mut k = corridor_views(0.3);
         assert!(all_targets(&mut k).is_empty());
         assert!(!k.reopen_wide_openings());
+    }
+
+    #[test]
+    fn a_reopened_part_shorter_than_the_beams_resolve_is_not_a_trip() {
+        // The door's reopened parts, each with its length and its near end's distance from
+        // its view's viewpoint (from the definition of the beams' spacing, d · 2π / beams).
+        let mut k = corridor_views(0.6);
+        assert!(all_targets(&mut k).is_empty() && k.reopen_wide_openings());
+        let parts: Vec<(f64, f64)> = all_targets(&mut k)
+            .iter()
+            .map(|t| {
+                let [p, q] = k.gap_of(t);
+                let at = k.views[t.view].at;
+                let d = |x: Point| (x[0] - at[0]).hypot(x[1] - at[1]);
+                ((q[0] - p[0]).hypot(q[1] - p[1]), d(p).min(d(q)))
+            })
+            .collect();
+        assert!(!parts.is_empty());
+        // Beams whose spacing at every part's distance is longer than the part: under the
+        // lift the rule's width is lifted, not what the sensor resolves, so none is a trip.
+        let coarse = parts
+            .iter()
+            .map(|&(len, d)| ((d * std::f64::consts::TAU / len).ceil() as u32).saturating_sub(1))
+            .min()
+            .unwrap();
+        let fine = parts
+            .iter()
+            .map(|&(len, d)| (d * std::f64::consts::TAU / len).ceil() as u32 + 1)
+            .max()
+            .unwrap();
+        assert!(coarse >= 1);
+        for (beams, trips) in [(coarse, false), (fine, true)] {
+            let mut k = corridor_views(0.6);
+            assert!(all_targets(&mut k).is_empty() && k.reopen_wide_openings());
+            k.sensor.beams = Some(beams);
+            assert_eq!(!all_targets(&mut k).is_empty(), trips, "{beams} beams: {parts:?}");
+        }
     }
 
     #[test]
