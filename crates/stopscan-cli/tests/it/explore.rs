@@ -457,9 +457,11 @@ fn cost_aware_closes_slivers_in_front_of_walls_seen_and_says_so() {
     let dir = temp("walled-pockets");
     std::fs::create_dir_all(&dir).unwrap();
     let out = dir.join("run.json");
-    // `cost_aware` on depot with the flags `extra`: the table and the record.
+    // `cost_aware` on depot with the flags `extra`: the table and the record. (Seed 2 closes
+    // six such parts; seed 5 closed some until ICP paired returns only with walls that run as
+    // their surfaces do, which placed its stops better.)
     let run = |extra: &[&str]| {
-        let mut args = vec!["--seed", "5", "explore", "--env", &map, "--strategy", "cost_aware"];
+        let mut args = vec!["--seed", "2", "explore", "--env", &map, "--strategy", "cost_aware"];
         args.extend(["--robot-radius", "0.2", "--out", out.to_str().unwrap()]);
         args.extend(["--optimum-seconds", "0", "--bounds-seconds", "0"]);
         args.extend(["--greedy-max-vertices", "0"]);

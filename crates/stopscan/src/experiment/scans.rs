@@ -104,7 +104,7 @@ pub fn scan_pairs(
         };
         let prior = Prior { position: max_shift / 3.0, heading: max_turn / 3.0 };
         let t = std::time::Instant::now();
-        let al = icp::align(&gb.points, &guess, Some(prior), &map, &icp_params);
+        let al = icp::align(&gb.points, &gb.normals, &guess, Some(prior), &map, &icp_params);
         icp_s += t.elapsed().as_secs_f64();
         let err = (al.pose.x - pb.x).hypot(al.pose.y - pb.y);
         let turn = wrap(al.pose.theta - pb.theta).abs();

@@ -38,6 +38,13 @@ impl Pose {
         [self.x + c * p[0] - s * p[1], self.y + s * p[0] + c * p[1]]
     }
 
+    /// The direction `v` (given in this pose's frame) in the frame the pose is given in:
+    /// turned by the heading, not moved.
+    pub fn turn(&self, v: Point) -> Point {
+        let (s, c) = self.theta.sin_cos();
+        [c * v[0] - s * v[1], s * v[0] + c * v[1]]
+    }
+
     /// This pose followed by `d` (given in this pose's frame): `self ∘ d`.
     #[must_use]
     pub fn compose(&self, d: &Pose) -> Pose {

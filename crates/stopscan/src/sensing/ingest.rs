@@ -37,6 +37,13 @@ use crate::kernel::Point;
 use crate::protocol::laser::{InvalidScan, LaserScan, Pose};
 use crate::protocol::polygon::PolygonObservation;
 
+/// A fitted wall is evidence for scan matching ([`Ingested::walls`]) when at least this many
+/// returns lie on it. The line through two neighbouring returns alone may join two surfaces
+/// around a corner seen from far away (a shelf's front and its side, 0.25 m apart at 13 m):
+/// another stop's returns on either surface would pair with a wall at the wrong slant. See
+/// [`NORMAL_AGREEMENT`](super::icp::NORMAL_AGREEMENT) for what the two rules did.
+pub const MIN_WALL_RETURNS: usize = 3;
+
 /// How scans are read: the sensor's noise and the segmentation's thresholds.
 #[derive(Debug, Clone, Copy, PartialEq, serde::Serialize, serde::Deserialize)]
 pub struct IngestParams {
@@ -106,7 +113,13 @@ pub struct Ingested {
     pub observation: PolygonObservation,
     /// The returns after cleaning, in the same frame (for scan matching).
     pub points: Vec<Point>,
-    /// The fitted wall segments, in the same frame.
+    /// Each return's surface normal in the same frame (a unit vector, either way round), from
+    /// the wall fitted through it: `None` at a corner between two walls, or for a return
+    /// alone. Scan matching pairs a return only with a wall that runs as its own surface
+    /// does.
+    pub normals: Vec<Option<Point>>,
+    /// The fitted wall segments, in the same frame: those fitted to at least
+    /// [`MIN_WALL_RETURNS`] returns (the region's boundary has the others too).
     pub walls: Vec<[Point; 2]>,
     /// Gaps longer than [`IngestParams::bridge`] between returns on one wall line (left as
     /// windows in the region, since an opening may hide there), as segments between the two
@@ -207,6 +220,7 @@ pub fn ingest(
             region: VisibilityRegion { viewpoint: at, polygon, boundary },
         },
         points: t.points.into_iter().map(to_map).collect(),
+        normals: t.normals.into_iter().map(|n| n.map(|n| pose.turn(n))).collect(),
         walls: segments(t.walls),
         bridges: segments(t.bridges),
         cleaning,
@@ -256,6 +270,7 @@ struct Traced {
     walls: Vec<[Point; 2]>,
     bridges: Vec<[Point; 2]>,
     points: Vec<Point>,
+    normals: Vec<Option<Point>>,
 }
 
 impl Beams<'_> {
@@ -360,6 +375,7 @@ impl Beams<'_> {
             walls: Vec::new(),
             bridges: Vec::new(),
             points: Vec::new(),
+            normals: Vec::new(),
         };
         // A full turn all on one surface closes on itself: its last piece is a wall too.
         let closed = self.full
@@ -407,12 +423,15 @@ impl Beams<'_> {
         let pts: Vec<Point> = idx.iter().map(|&j| self.point(j)).collect();
         t.points.extend(&pts);
         let dirs: Vec<Point> = idx.iter().map(|&j| self.dirs[j]).collect();
-        let vs = fit_run(&pts, &dirs, self.params);
+        let Fit { vertices: vs, support, normals } = fit_run(&pts, &dirs, self.params);
+        t.normals.extend(normals);
         let last = vs.len() - 1;
         for (i, &v) in vs.iter().enumerate() {
             let wall = i < last || closed;
             t.verts.push((v, if wall { Piece::Wall } else { Piece::Break }));
-            if wall {
+            // A piece fitted to two returns is the region's boundary, but no evidence of a
+            // wall for scan matching.
+            if wall && support.get(i).copied().unwrap_or(2) >= MIN_WALL_RETURNS {
                 t.walls.push([v, vs[(i + 1) % vs.len()]]);
             }
         }
@@ -512,10 +531,10 @@ fn despeckle(
 /// Split-and-merge over one run of returns `pts` (on the rays `dirs`, `dphi` apart): the
 /// run's vertices, its ends projected along their rays onto the fitted lines and corners
 /// where lines meet.
-fn fit_run(pts: &[Point], dirs: &[Point], params: &IngestParams) -> Vec<Point> {
+fn fit_run(pts: &[Point], dirs: &[Point], params: &IngestParams) -> Fit {
     let n = pts.len();
     if n == 1 {
-        return vec![pts[0]];
+        return Fit { vertices: vec![pts[0]], support: Vec::new(), normals: vec![None] };
     }
     // Split.
     let mut cuts = vec![0, n - 1];
@@ -562,7 +581,27 @@ fn fit_run(pts: &[Point], dirs: &[Point], params: &IngestParams) -> Vec<Point> {
         }));
     }
     out.push(onto(n - 1, &lines[lines.len() - 1]));
-    out
+    let support = cuts.windows(2).map(|w| w[1] - w[0] + 1).collect();
+    // Each return's surface normal: its line's, except at a cut, where two lines meet.
+    let mut normals = vec![None; n];
+    for (j, w) in cuts.windows(2).enumerate() {
+        for (i, slot) in normals.iter_mut().enumerate().take(w[1] + 1).skip(w[0]) {
+            let corner = (i == w[0] && j > 0) || (i == w[1] && j + 2 < cuts.len());
+            *slot = (!corner).then_some(lines[j].normal);
+        }
+    }
+    Fit { vertices: out, support, normals }
+}
+
+/// What split-and-merge makes of one run of returns.
+struct Fit {
+    /// The run's vertices ([`fit_run`]).
+    vertices: Vec<Point>,
+    /// How many returns each piece between consecutive vertices was fitted to.
+    support: Vec<usize>,
+    /// Each return's surface normal (a unit vector, either way round): its fitted line's,
+    /// or `None` at a corner between two lines.
+    normals: Vec<Option<Point>>,
 }
 
 /// Whether the direction of `x` lies strictly between the directions `a` and `b`
@@ -776,6 +815,115 @@ mod tests {
             (area(&a.observation.region.polygon) - area(&b.observation.region.polygon)).abs()
                 < 1e-9
         );
+    }
+
+    /// A hall with a shelf whose front steps back by 0.25 m, seen from 14 m away: the step's
+    /// side faces away, so the returns jump from the front to the recess between neighbouring
+    /// beams, closer than the breakpoint test can tell from a wall seen at a slant.
+    fn far_step() -> (crate::geometry::Domain, LaserScan, Pose) {
+        let hall = crate::geometry::Domain::new(
+            vec![[0.0, 0.0], [30.0, 0.0], [30.0, 16.0], [0.0, 16.0]],
+            vec![vec![
+                [12.0, 10.0],
+                [12.0, 11.0],
+                [16.0, 11.0],
+                [16.0, 10.25],
+                [15.0, 10.25],
+                [15.0, 10.0],
+            ]],
+        )
+        .unwrap();
+        // 720 exact beams, each to the nearest edge it meets.
+        let at = Pose::new([2.0, 3.0], 0.3);
+        let cast = |a: f64| {
+            let u = [(a + at.theta).cos(), (a + at.theta).sin()];
+            hall.rings()
+                .iter()
+                .flat_map(|r| (0..r.len()).map(move |i| [r[i], r[(i + 1) % r.len()]]))
+                .filter_map(|e| crate::geometry::ray_segment(at.at(), u, e[0], e[1]))
+                .reduce(f64::min)
+                .filter(|&t| t < 20.0)
+                .unwrap_or(f64::INFINITY)
+        };
+        let scan = turn(720, cast);
+        (hall, scan, at)
+    }
+
+    /// The unit normal of the domain's edge nearest `p`, and how far `p` is from it.
+    fn nearest_edge(d: &crate::geometry::Domain, p: Point) -> (Point, f64) {
+        d.rings()
+            .iter()
+            .flat_map(|r| (0..r.len()).map(move |i| [r[i], r[(i + 1) % r.len()]]))
+            .map(|[a, b]| {
+                let l = (b[0] - a[0]).hypot(b[1] - a[1]);
+                ([(a[1] - b[1]) / l, (b[0] - a[0]) / l], crate::geometry::segment_distance(p, a, b))
+            })
+            .min_by(|x, y| x.1.total_cmp(&y.1))
+            .unwrap()
+    }
+
+    #[test]
+    fn walls_for_matching_lie_on_three_returns_and_normals_are_their_surfaces() {
+        let (hall, scan, at) = far_step();
+        let p = IngestParams::for_noise(0.0);
+        let g = ingest(&scan, &at, &p).unwrap();
+        assert_eq!(g.points.len(), g.normals.len());
+        // Every wall handed to scan matching has at least three returns on it (within the
+        // split tolerance of the segment, counted from the definition).
+        for w in &g.walls {
+            let on = g
+                .points
+                .iter()
+                .filter(|q| crate::geometry::segment_distance(**q, w[0], w[1]) <= p.split + 1e-9)
+                .count();
+            assert!(on >= MIN_WALL_RETURNS, "{w:?} lies on {on} returns");
+        }
+        // The region's boundary still joins the shelf's front to its recess: a piece of wall
+        // between two returns on different surfaces, which matching does not get.
+        let joins = g.observation.region.boundary.iter().any(|b| match *b {
+            BoundaryPiece::Wall { from, to } => {
+                let (n0, d0) = nearest_edge(&hall, from);
+                let (n1, d1) = nearest_edge(&hall, to);
+                // Both ends on south faces, at different heights: across the step.
+                d0 < 1e-6
+                    && d1 < 1e-6
+                    && (n0[0] * n1[0] + n0[1] * n1[1]) > 0.99
+                    && (0.2..0.3).contains(&(from[1] - to[1]).abs())
+            }
+            _ => false,
+        });
+        assert!(joins, "no boundary piece across the step: the test would prove nothing");
+        // From the front (y = 10) to the recess (y = 10.25), slanting across the step.
+        let across = |w: &[Point; 2]| {
+            let (dx, dy) = ((w[0][0] - w[1][0]).abs(), (w[0][1] - w[1][1]).abs());
+            (0.2..0.3).contains(&dy) && dx > 0.1
+        };
+        assert!(!g.walls.iter().any(across), "a wall across the step: {:?}", g.walls);
+        // A return with a normal lies on a surface with that normal; corners have none.
+        let mut corners = 0;
+        for (q, n) in g.points.iter().zip(&g.normals) {
+            let (_, d) = nearest_edge(&hall, *q);
+            assert!(d < 1e-6, "return {q:?} off the walls by {d}");
+            let Some(n) = n else {
+                corners += 1;
+                continue;
+            };
+            // Some edge through the return (two at a corner of the hall) runs as its normal says,
+            // within 5°: a line may take in a return of the next wall within the split
+            // tolerance, which tilts it a little (1.2° at the hall's far corner).
+            let agrees = hall
+                .rings()
+                .iter()
+                .flat_map(|r| (0..r.len()).map(move |i| [r[i], r[(i + 1) % r.len()]]))
+                .filter(|[a, b]| crate::geometry::segment_distance(*q, *a, *b) < 1e-6)
+                .any(|[a, b]| {
+                    let l = (b[0] - a[0]).hypot(b[1] - a[1]);
+                    (n[0] * (b[0] - a[0]) + n[1] * (b[1] - a[1])).abs() / l
+                        < 5f64.to_radians().sin()
+                });
+            assert!(agrees, "return {q:?}: normal {n:?} is no wall's through it");
+        }
+        assert!(corners > 0 && corners < g.points.len() / 10, "{corners} corners");
     }
 
     #[test]

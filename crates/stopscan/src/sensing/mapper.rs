@@ -205,8 +205,9 @@ impl Mapper {
             max_turn: (3.0 * prior.heading).max(MIN_PLAUSIBLE_TURN),
             ..p.icp
         };
-        let alignment = (!self.map.is_empty())
-            .then(|| icp::align(&local.points, odometry, Some(prior), &self.map, &icp));
+        let alignment = (!self.map.is_empty()).then(|| {
+            icp::align(&local.points, &local.normals, odometry, Some(prior), &self.map, &icp)
+        });
         let aligned = alignment.as_ref().is_none_or(|a| a.fallback.is_none());
         self.unaligned = if aligned { 0.0 } else { driven_since };
         let initial = alignment.as_ref().map_or(*odometry, |a| a.pose);
@@ -235,7 +236,7 @@ impl Mapper {
             // placed well would carry the error of a nearby stop placed badly, and hold it
             // there against the loop closure that should move it.)
             for (owner, information, _) in
-                icp::information_by_owner(&local.points, &initial, &self.map, &icp)
+                icp::information_by_owner(&local.points, &local.normals, &initial, &self.map, &icp)
             {
                 let j = owner as usize;
                 if j >= k {
@@ -249,7 +250,7 @@ impl Mapper {
                     information: scaled(in_frame(information, from.theta), 1.0 / LINK_INFLATION),
                 });
             }
-            links = self.link(k, &local.points, far, &initial, &icp);
+            links = self.link(k, (&local.points, &local.normals), far, &initial, &icp);
         }
         self.graph.optimize(GRAPH_STEPS);
         let estimate = self.graph.poses()[k];
@@ -273,14 +274,14 @@ impl Mapper {
         })
     }
 
-    /// Matches the scan of stop `k` (its returns `points`, reaching `far` metres, placed at
+    /// Matches the scan of stop `k` (its returns `points` and their surfaces' `normals`, reaching `far` metres, placed at
     /// `initial` by the map's alignment) to each of the nearest [`MAX_LINKS`] aligned stops
     /// whose reach overlaps its own, alone; every match that converged on [`LINK_MIN_PAIRS`]
     /// pairs becomes an edge. Returns how many did.
     fn link(
         &mut self,
         k: usize,
-        points: &[Point],
+        (points, normals): (&[Point], &[Option<Point>]),
         far: f64,
         initial: &Pose,
         icp: &IcpParams,
@@ -312,11 +313,11 @@ impl Mapper {
             let from = self.graph.poses()[j];
             let stop = &self.kept[j];
             let start = from.inverse().compose(initial);
-            let a = icp::align(points, &start, Some(LINK_PRIOR), &stop.local, icp);
+            let a = icp::align(points, normals, &start, Some(LINK_PRIOR), &stop.local, icp);
             if a.fallback.is_some() || !a.converged || a.pairs < LINK_MIN_PAIRS {
                 continue;
             }
-            let information = icp::information(points, &a.pose, &stop.local, icp);
+            let information = icp::information(points, normals, &a.pose, &stop.local, icp);
             let edge = Edge {
                 from: j,
                 to: k,
