@@ -180,6 +180,12 @@ fn sensor_rows(t: &mut Table, sensor: &SensorInfo) {
     if let Some(n) = sensor.scans_where_stuck {
         t.row(vec!["scans where the robot was stuck".into(), n.to_string()]);
     }
+    if let Some(n) = sensor.scans_to_place_again {
+        t.row(vec![
+            "scans to place the robot again before parts dropped were tried again".into(),
+            n.to_string(),
+        ]);
+    }
     if sensor.gave_up == Some(true) {
         t.row(vec![
             "gave up".into(),

@@ -104,6 +104,10 @@ pub struct SensorInfo {
     /// places it again to plan on from (absent: none).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub scans_where_stuck: Option<usize>,
+    /// Scans taken at what would have been the end, to place the robot again before window
+    /// parts dropped by failed moves are tried once more (absent: none).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub scans_to_place_again: Option<usize>,
     /// `true` when the strategy gave up before every window was explored, stuck again where
     /// it had scanned for being stuck: what it left open is counted nowhere else (absent: it
     /// did not give up).
@@ -134,6 +138,8 @@ impl SensorInfo {
             windows_into_walled_pockets: (skipped.walled_pocket > 0)
                 .then_some(skipped.walled_pocket),
             scans_where_stuck: (skipped.stuck_scans > 0).then_some(skipped.stuck_scans),
+            scans_to_place_again: (skipped.placed_again_scans > 0)
+                .then_some(skipped.placed_again_scans),
             gave_up: skipped.gave_up.then_some(true),
         }
     }

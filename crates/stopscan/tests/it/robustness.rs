@@ -373,3 +373,57 @@ fn a_part_dropped_by_a_failed_move_is_tried_again_before_the_exploration_ends() 
         }
     }
 }
+
+#[test]
+fn parts_still_dropped_at_the_end_get_a_scan_to_place_the_robot_again_and_one_more_try() {
+    // Where each scan was taken: where the last move that got there ended (`None`: the start).
+    fn scan_spots(steps: &[Step]) -> Vec<(usize, Option<Point>)> {
+        let mut at = None;
+        let mut out = Vec::new();
+        for (i, s) in steps.iter().enumerate() {
+            match *s {
+                Step::Move { to, failed: false } => at = Some(to),
+                Step::Move { .. } => {}
+                Step::Scan { .. } => out.push((i, at)),
+            }
+        }
+        out
+    }
+    // From the third scan on, odometry's drift puts every new goal of a trip of more than
+    // two moves inside an obstacle in truth; the way back to where a scan was taken works.
+    let mut failed_goals: Vec<Point> = Vec::new();
+    let (steps, done, k, setup) = drive_office(20_000, |to, steps| {
+        let spots = scan_spots(steps);
+        let since = steps.iter().rev().take_while(|s| matches!(s, Step::Move { .. })).count();
+        let back = spots.iter().any(|&(_, p)| p == Some(to));
+        let fails = spots.len() >= 3 && since >= 2 && !back;
+        if fails {
+            failed_goals.push(to);
+        }
+        fails
+    });
+    assert!(done, "the exploration ends");
+    assert!(!failed_goals.is_empty(), "no move failed: the test proves nothing");
+    // One scan to place the robot again, at what would have been the end, and the run record
+    // says so. It stood where an earlier scan was taken (the trip drove back there).
+    assert_eq!(k.placed_again_scans, 1);
+    let info = stopscan::run_record::SensorInfo::of(&setup.sensor, &k);
+    assert_eq!(info.scans_to_place_again, Some(1));
+    let spots = scan_spots(&steps);
+    // (A scan right after failed moves is the other kind: three failures at one place.)
+    let again: Vec<usize> = (0..spots.len())
+        .filter(|&j| spots[j].1.is_some() && spots[..j].iter().any(|s| s.1 == spots[j].1))
+        .map(|j| spots[j].0)
+        .filter(|&i| matches!(steps[i], Step::Scan { after_failure: false }))
+        .collect();
+    assert_eq!(again.len(), 1, "scans where one was taken before: {again:?}");
+    // After it, a goal that had failed was tried once more.
+    assert!(
+        steps[again[0]..]
+            .iter()
+            .any(|s| matches!(s, Step::Move { to, .. } if failed_goals.contains(to))),
+        "no goal that failed was tried again after the scan"
+    );
+    // From the pose that scan gave, the parts dropped were reached: none is left dropped.
+    assert_eq!(k.move_failed, 0);
+}
