@@ -290,8 +290,8 @@ pub struct Skipped {
     pub stuck_scans: usize,
     /// Scans taken at what would have been the end, where the robot stood, because window
     /// parts were still dropped by failed moves and no view had been added since they were
-    /// last tried ([`Known::place_again_for_dropped`]): the scan places the robot again, and
-    /// the parts are tried once more from a better pose.
+    /// last tried: the scan places the robot again, and the parts are tried once more from a
+    /// better pose.
     #[serde(default)]
     pub placed_again_scans: usize,
     /// Whether the strategy gave up before every window was explored: stuck again where it
