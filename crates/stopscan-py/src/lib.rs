@@ -491,10 +491,7 @@ impl PyStrategy {
         } else if arrived {
             Feedback::Arrived
         } else if let Some(r) = region {
-            Feedback::Scanned(PolygonObservation {
-                at: r.region.viewpoint,
-                region: r.region.clone(),
-            })
+            Feedback::Scanned(PolygonObservation::new(r.region.viewpoint, r.region.clone()))
         } else {
             let at = failed.map(|f| [f.0, f.1]).unwrap_or_default();
             let reason = match reason {

@@ -215,10 +215,10 @@ pub fn ingest(
     let segments =
         |v: Vec<[Point; 2]>| v.into_iter().map(|w| [to_map(w[0]), to_map(w[1])]).collect();
     Ok(Ingested {
-        observation: PolygonObservation {
+        observation: PolygonObservation::new(
             at,
-            region: VisibilityRegion { viewpoint: at, polygon, boundary },
-        },
+            VisibilityRegion { viewpoint: at, polygon, boundary },
+        ),
         points: t.points.into_iter().map(to_map).collect(),
         normals: t.normals.into_iter().map(|n| n.map(|n| pose.turn(n))).collect(),
         walls: segments(t.walls),

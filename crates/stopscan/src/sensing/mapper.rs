@@ -86,6 +86,10 @@ pub struct Reading {
     /// How many earlier stops the scan was matched to on its own: the pose graph's edges
     /// from it, besides odometry.
     pub links: usize,
+    /// How unsure the placement is: one standard deviation of the position, metres, along
+    /// its least sure direction, as the pose graph holds it when the scan is read
+    /// ([`PoseGraph::covariance`]; 0 for the first stop, which defines the map frame).
+    pub placement: f64,
     /// What cleaning did.
     pub cleaning: Cleaning,
 }
@@ -254,6 +258,7 @@ impl Mapper {
         }
         self.graph.optimize(GRAPH_STEPS);
         let estimate = self.graph.poses()[k];
+        let placement = self.graph.covariance(k).map_or(0.0, |c| largest_spread(&c));
         self.kept.push(Kept {
             walls: local.walls,
             bridges: local.bridges,
@@ -265,13 +270,9 @@ impl Mapper {
         });
         self.place_walls();
         let place = |q: Point| estimate.apply(q);
-        Ok(Reading {
-            observation: local.observation.mapped(place),
-            estimate,
-            alignment,
-            links,
-            cleaning: local.cleaning,
-        })
+        let mut observation = local.observation.mapped(place);
+        observation.placement = placement;
+        Ok(Reading { observation, estimate, alignment, links, placement, cleaning: local.cleaning })
     }
 
     /// Matches the scan of stop `k` (its returns `points` and their surfaces' `normals`, reaching `far` metres, placed at
@@ -377,6 +378,15 @@ impl Mapper {
             place(&mut self.map, self.kept.len() - 1, s, &s.placed);
         }
     }
+}
+
+/// The standard deviation of a position along its least sure direction, metres: the square
+/// root of the larger eigenvalue of the covariance's position block.
+fn largest_spread(c: &[[f64; 3]; 3]) -> f64 {
+    let (a, b, d) = (c[0][0], c[0][1], c[1][1]);
+    let mean = f64::midpoint(a, d);
+    let half = (f64::midpoint(a, -d)).hypot(b);
+    (mean + half).max(0.0).sqrt()
 }
 
 /// An information matrix from standard deviations per axis.

@@ -101,55 +101,14 @@ impl PoseGraph {
     /// most `iterations` steps, each edge weighted by a Huber kernel on its Mahalanobis
     /// distance. Returns the steps taken.
     pub fn optimize(&mut self, iterations: usize) -> usize {
-        let first = self.poses.len().saturating_sub(WINDOW).max(1);
+        let first = self.first_free();
         let n = self.poses.len().saturating_sub(first);
         if n == 0 {
             return 0;
         }
-        let dim = 3 * n;
         for it in 0..iterations {
-            let mut h = vec![0.0; dim * dim];
-            let mut g = vec![0.0; dim];
-            for edge in &self.edges {
-                let free = |k: usize| (k >= first).then(|| 3 * (k - first));
-                let (fa, fb) = (free(edge.from), free(edge.to));
-                if fa.is_none() && fb.is_none() {
-                    continue;
-                }
-                let (e, ja, jb) = self.residual(edge);
-                let chi = quadratic(&edge.information, &e).sqrt();
-                let w = if chi <= ROBUST { 1.0 } else { ROBUST / chi };
-                let omega = edge.information.map(|row| row.map(|v| v * w));
-                // Ω·e and Jᵀ Ω J blocks.
-                let oe: [f64; 3] =
-                    std::array::from_fn(|i| (0..3).map(|k| omega[i][k] * e[k]).sum());
-                let blocks = [(fa, &ja), (fb, &jb)];
-                for (pi, ji) in blocks {
-                    let Some(pi) = pi else { continue };
-                    for r in 0..3 {
-                        g[pi + r] += (0..3).map(|k| ji[k][r] * oe[k]).sum::<f64>();
-                    }
-                    for (pj, jj) in blocks {
-                        let Some(pj) = pj else { continue };
-                        for r in 0..3 {
-                            for col in 0..3 {
-                                let v: f64 = (0..3)
-                                    .map(|k| {
-                                        ji[k][r]
-                                            * (0..3).map(|l| omega[k][l] * jj[l][col]).sum::<f64>()
-                                    })
-                                    .sum();
-                                h[(pi + r) * dim + pj + col] += v;
-                            }
-                        }
-                    }
-                }
-            }
-            // A node no edge reaches stays put.
-            for k in 0..dim {
-                h[k * dim + k] += 1e-9;
-            }
-            let Some(step) = cholesky_solve(&mut h, dim, &g) else { return it };
+            let (mut h, g) = self.normal_equations(first);
+            let Some(step) = cholesky_solve(&mut h, 3 * n, &g) else { return it };
             let mut largest = 0.0f64;
             for (k, p) in self.poses[first..].iter_mut().enumerate() {
                 let d = &step[3 * k..3 * k + 3];
@@ -163,6 +122,85 @@ impl PoseGraph {
             }
         }
         iterations
+    }
+
+    /// The covariance of node `k`'s `(x, y, θ)` at the current poses (metres² and radians²),
+    /// given every edge and the nodes [`optimize`](Self::optimize) holds: the inverse of the
+    /// Gauss-Newton information, each edge robustly weighted as the solver weighs it. `None`
+    /// for a held node (node 0, or one older than the window) or when the information is
+    /// singular. The nodes held count as certain, so a chain of stops beyond the window
+    /// reports its spread since the oldest node solved.
+    pub fn covariance(&self, k: usize) -> Option<[[f64; 3]; 3]> {
+        let first = self.first_free();
+        if k < first || k >= self.poses.len() {
+            return None;
+        }
+        let dim = 3 * (self.poses.len() - first);
+        let (mut h, _) = self.normal_equations(first);
+        cholesky(&mut h, dim)?;
+        let at = 3 * (k - first);
+        let mut out = [[0.0; 3]; 3];
+        for c in 0..3 {
+            let mut unit = vec![0.0; dim];
+            unit[at + c] = 1.0;
+            let col = solve_factored(&h, dim, &unit);
+            for (r, row) in out.iter_mut().enumerate() {
+                row[c] = col[at + r];
+            }
+        }
+        Some(out)
+    }
+
+    /// The first node [`optimize`](Self::optimize) moves: node 0 and every node older than
+    /// the most recent [`WINDOW`] are held.
+    fn first_free(&self) -> usize {
+        self.poses.len().saturating_sub(WINDOW).max(1)
+    }
+
+    /// The Gauss-Newton system `H`, `g` (row-major `H`, `3 n × 3 n` for the `n` nodes from
+    /// `first` on) at the current poses, each edge weighted by a Huber kernel on its
+    /// Mahalanobis distance; a node no edge reaches gets a tiny diagonal, so it stays put.
+    fn normal_equations(&self, first: usize) -> (Vec<f64>, Vec<f64>) {
+        let dim = 3 * self.poses.len().saturating_sub(first);
+        let mut h = vec![0.0; dim * dim];
+        let mut g = vec![0.0; dim];
+        for edge in &self.edges {
+            let free = |k: usize| (k >= first).then(|| 3 * (k - first));
+            let (fa, fb) = (free(edge.from), free(edge.to));
+            if fa.is_none() && fb.is_none() {
+                continue;
+            }
+            let (e, ja, jb) = self.residual(edge);
+            let chi = quadratic(&edge.information, &e).sqrt();
+            let w = if chi <= ROBUST { 1.0 } else { ROBUST / chi };
+            let omega = edge.information.map(|row| row.map(|v| v * w));
+            // Ω·e and Jᵀ Ω J blocks.
+            let oe: [f64; 3] = std::array::from_fn(|i| (0..3).map(|k| omega[i][k] * e[k]).sum());
+            let blocks = [(fa, &ja), (fb, &jb)];
+            for (pi, ji) in blocks {
+                let Some(pi) = pi else { continue };
+                for r in 0..3 {
+                    g[pi + r] += (0..3).map(|k| ji[k][r] * oe[k]).sum::<f64>();
+                }
+                for (pj, jj) in blocks {
+                    let Some(pj) = pj else { continue };
+                    for r in 0..3 {
+                        for col in 0..3 {
+                            let v: f64 = (0..3)
+                                .map(|k| {
+                                    ji[k][r] * (0..3).map(|l| omega[k][l] * jj[l][col]).sum::<f64>()
+                                })
+                                .sum();
+                            h[(pi + r) * dim + pj + col] += v;
+                        }
+                    }
+                }
+            }
+        }
+        for k in 0..dim {
+            h[k * dim + k] += 1e-9;
+        }
+        (h, g)
     }
 }
 
@@ -180,6 +218,13 @@ fn robust_cost(chi2: f64) -> f64 {
 /// Solves `h x = g` for a symmetric positive definite `h` (row-major, `n × n`, overwritten by
 /// its Cholesky factor); `None` when it is not positive definite.
 fn cholesky_solve(h: &mut [f64], n: usize, g: &[f64]) -> Option<Vec<f64>> {
+    cholesky(h, n)?;
+    Some(solve_factored(h, n, g))
+}
+
+/// Overwrites the lower triangle of `h` (row-major, `n × n`, symmetric positive definite) with
+/// its Cholesky factor `L` (`h = L Lᵀ`); `None` when it is not positive definite.
+fn cholesky(h: &mut [f64], n: usize) -> Option<()> {
     for j in 0..n {
         let mut d = h[j * n + j];
         for k in 0..j {
@@ -198,21 +243,26 @@ fn cholesky_solve(h: &mut [f64], n: usize, g: &[f64]) -> Option<Vec<f64>> {
             h[i * n + j] = v / d;
         }
     }
+    Some(())
+}
+
+/// Solves `L Lᵀ x = g` for the factor [`cholesky`] left in `l`.
+fn solve_factored(l: &[f64], n: usize, g: &[f64]) -> Vec<f64> {
     // L y = g, then Lᵀ x = y.
     let mut x = g.to_vec();
     for i in 0..n {
         for k in 0..i {
-            x[i] -= h[i * n + k] * x[k];
+            x[i] -= l[i * n + k] * x[k];
         }
-        x[i] /= h[i * n + i];
+        x[i] /= l[i * n + i];
     }
     for i in (0..n).rev() {
         for k in i + 1..n {
-            x[i] -= h[k * n + i] * x[k];
+            x[i] -= l[k * n + i] * x[k];
         }
-        x[i] /= h[i * n + i];
+        x[i] /= l[i * n + i];
     }
-    Some(x)
+    x
 }
 
 #[cfg(test)]
@@ -380,6 +430,68 @@ mod tests {
         // The free nodes followed their odometry from the held ones.
         let p = g.poses()[WINDOW + 4];
         assert!((p.y - 0.2 * (WINDOW as f64)).abs() < 1e-6, "{p:?}");
+    }
+
+    /// A chain of stops along x, each leg measured with position deviation `legs[i]` and a
+    /// heading known almost exactly, plus the extra edges given.
+    fn chain(legs: &[f64], extra: &[Edge]) -> PoseGraph {
+        let mut g = PoseGraph::new();
+        for k in 0..=legs.len() {
+            g.add_node(Pose { x: k as f64, y: 0.0, theta: 0.0 });
+        }
+        for (k, &s) in legs.iter().enumerate() {
+            g.add_edge(Edge {
+                from: k,
+                to: k + 1,
+                measured: Pose { x: 1.0, y: 0.0, theta: 0.0 },
+                information: diag(s, 1e-6),
+            });
+        }
+        for e in extra {
+            g.add_edge(*e);
+        }
+        g.optimize(10);
+        g
+    }
+
+    #[test]
+    fn a_chain_of_legs_is_as_unsure_as_the_sum_of_their_variances() {
+        // Independent errors add their variances: the last stop's position is off by the
+        // sum of its legs' errors.
+        let legs = [0.1, 0.2, 0.05, 0.3];
+        let g = chain(&legs, &[]);
+        let c = g.covariance(legs.len()).expect("a solved node");
+        let sum: f64 = legs.iter().map(|s| s * s).sum();
+        assert!((c[0][0] - sum).abs() < 1e-9 * sum.max(1.0), "{c:?} against {sum}");
+        assert!((c[1][1] - sum).abs() < 1e-9 * sum.max(1.0), "{c:?} against {sum}");
+        assert!(c[0][1].abs() < 1e-9);
+        // The second stop knows only its first two legs.
+        let c1 = g.covariance(2).expect("a solved node");
+        assert!((c1[0][0] - (0.01 + 0.04)).abs() < 1e-9, "{c1:?}");
+        // Node 0 anchors the frame.
+        assert_eq!(g.covariance(0), None);
+        assert_eq!(g.covariance(legs.len() + 1), None);
+    }
+
+    #[test]
+    fn a_loop_closure_makes_the_stops_it_ties_as_sure_as_both_ways_together() {
+        // Two independent measurements of one position combine as the inverse of the sum of
+        // their inverse variances: two legs of 0.3 one way, one direct match of 0.1.
+        let direct = Edge {
+            from: 0,
+            to: 2,
+            measured: Pose { x: 2.0, y: 0.0, theta: 0.0 },
+            information: diag(0.1, 1e-6),
+        };
+        let g = chain(&[0.3, 0.3], &[direct]);
+        let c = g.covariance(2).expect("a solved node");
+        let both = 1.0 / (1.0 / (2.0 * 0.09) + 1.0 / 0.01);
+        assert!((c[0][0] - both).abs() < 1e-9, "{c:?} against {both}");
+        // The middle stop: its first leg one way, against its second leg plus the match the
+        // other way (0.09 against 0.09 + 0.01).
+        let c1 = g.covariance(1).expect("a solved node");
+        let mid = 1.0 / (1.0 / 0.09 + 1.0 / (0.09 + 0.01));
+        assert!((c1[1][1] - mid).abs() < 1e-9, "{c1:?} against {mid}");
     }
 
     proptest::proptest! {

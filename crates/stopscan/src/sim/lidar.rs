@@ -89,6 +89,11 @@ pub struct Stop {
     /// graph (loop closures included).
     #[serde(default)]
     pub links: usize,
+    /// How unsure the pose graph was of the stop's position when the scan was read: one
+    /// standard deviation along its least sure direction, metres
+    /// ([`Reading::placement`](crate::sensing::mapper::Reading::placement)).
+    #[serde(default)]
+    pub placement_sd: f64,
     /// What cleaning did to the scan.
     pub cleaning: Cleaning,
 }
@@ -437,6 +442,7 @@ impl<'a> Robot<'a> {
             heading_error: wrap(belief.theta - truth.theta),
             alignment: reading.alignment,
             links: reading.links,
+            placement_sd: reading.placement,
             cleaning: reading.cleaning,
         });
         if belief.at() != *self.out.believed_path.last().expect("starts with the start") {

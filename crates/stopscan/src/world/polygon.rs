@@ -194,7 +194,7 @@ impl PolygonWorld {
             None => self.vis.query(at)?,
             Some(r) => self.vis.query_range(at, r)?.to_region(r * cover::RANGE_CHORD_TOLERANCE),
         };
-        Ok(PolygonObservation { at, region })
+        Ok(PolygonObservation::new(at, region))
     }
 
     /// A point strictly inside the free space (the centroid of a triangle of the mesh), for

@@ -75,8 +75,17 @@ fn a_loop_closure_moves_the_stops_odometry_misplaced_along_a_corridor() {
             // Before the loop closes, stops 1 and 2 are where odometry put them.
             assert!(error(&reading.estimate, t) > 0.2, "stop 2: {:?}", reading.estimate);
         }
+        if k == 0 {
+            assert_eq!(reading.placement, 0.0, "the first stop defines the map frame");
+        }
+        if k == 1 {
+            // After a 40 m drive, ICP unable to tell where along the corridor: the graph
+            // knows the stop only as well as odometry, 2% of 40 m along it.
+            assert!(reading.placement > 0.4, "stop 1 spread {}", reading.placement);
+        }
         if k == 3 {
             assert!(reading.links >= 1, "stop 3 matched to stop 0");
+            assert!(reading.placement < 0.05, "stop 3 tied to stop 0: {}", reading.placement);
         }
     }
     // Stop 3 is placed by the first side corridor, and the graph moved stops 1 and 2 back with it.

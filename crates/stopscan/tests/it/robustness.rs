@@ -251,10 +251,7 @@ fn drive_office(
         match s.act(&fb) {
             Action::Scan => {
                 steps.push(Step::Scan { after_failure });
-                fb = Feedback::Scanned(PolygonObservation {
-                    at: here,
-                    region: vis.query(here).unwrap(),
-                });
+                fb = Feedback::Scanned(PolygonObservation::new(here, vis.query(here).unwrap()));
             }
             Action::MoveTo { to } => {
                 let failed = fails(to, &steps);

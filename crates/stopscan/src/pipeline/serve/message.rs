@@ -560,6 +560,10 @@ pub struct Localised {
     /// What scan matching did (absent for the first scan).
     #[serde(skip_serializing_if = "Option::is_none")]
     pub alignment: Option<Alignment>,
+    /// How unsure the pose is: one standard deviation of the position along its least sure
+    /// direction, metres, as the pose graph holds it (0 for the first scan, which defines
+    /// the map frame).
+    pub placement_sd: f64,
     /// What cleaning did to the scan.
     pub cleaning: Cleaning,
 }

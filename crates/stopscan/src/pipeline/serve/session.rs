@@ -574,6 +574,7 @@ impl PolygonRun {
             pose: estimate,
             correction: self.correction,
             alignment: reading.alignment,
+            placement_sd: reading.placement,
             cleaning: reading.cleaning,
         };
         Ok((action, Some(localised)))

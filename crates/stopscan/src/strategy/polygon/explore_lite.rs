@@ -602,7 +602,7 @@ mod tests {
             })
             .collect();
         let at = [0.5 * (lo[0] + hi[0]), 0.5 * (lo[1] + hi[1])];
-        PolygonObservation { at, region: VisibilityRegion { viewpoint: at, polygon, boundary } }
+        PolygonObservation::new(at, VisibilityRegion { viewpoint: at, polygon, boundary })
     }
 
     fn raster_of(res: f64, views: &[&PolygonObservation]) -> Raster {
@@ -738,9 +738,9 @@ mod tests {
         let a = rectangle([0.03, 0.03], [0.97, 0.97], [true; 4]);
         let mut r = raster_of(0.1, &[&a]);
         assert_eq!(r.state([4, 4]), FREE);
-        let wall = PolygonObservation {
-            at: [0.45, 0.45],
-            region: VisibilityRegion {
+        let wall = PolygonObservation::new(
+            [0.45, 0.45],
+            VisibilityRegion {
                 viewpoint: [0.45, 0.45],
                 polygon: vec![[0.45, 0.45], [0.65, 0.45], [0.45, 0.46]],
                 boundary: vec![
@@ -749,7 +749,7 @@ mod tests {
                     BoundaryPiece::Frontier { from: [0.45, 0.46], to: [0.45, 0.45] },
                 ],
             },
-        };
+        );
         r.add_view(&wall.region.polygon, &wall.region.boundary, wall.at);
         for x in 4..=6 {
             assert_eq!(r.state([x, 4]), OCCUPIED, "cell ({x}, 4)");

@@ -37,6 +37,9 @@ pub(super) struct View {
     /// The [`rounding`] of the region's coordinates: steps off a window are at least this.
     #[serde(default)]
     rounding: f64,
+    /// How unsure the scan's placement is ([`PolygonObservation::placement`]), metres.
+    #[serde(default)]
+    placement: f64,
 }
 
 /// The sensor rule's lift on a window's parts.
@@ -321,6 +324,18 @@ impl View {
     /// Whether `p` lies in the region's bounding box (closed).
     fn in_bounds(&self, p: Point) -> bool {
         self.near_bounds(p, 0.0)
+    }
+
+    /// Adds to `covered` the parts of the window `from`–`to` along which this view saw a wall
+    /// within `tol` ([`cover::band_cover`]; nothing for `tol` 0, the exact sensor).
+    fn band_cover(&self, from: Point, to: Point, tol: f64, covered: &mut Intervals) {
+        if tol > 0.0 && (self.near_bounds(from, tol) || self.near_bounds(to, tol)) {
+            for b in &self.pieces {
+                if let BoundaryPiece::Wall { from: p, to: q } = *b {
+                    cover::band_cover(from, to, p, q, tol, covered);
+                }
+            }
+        }
     }
 
     /// Whether `p` lies in the region's bounding box grown by `eps`.
@@ -647,6 +662,7 @@ impl Known {
             via: pending.as_ref().map(|t| t.via.clone()).unwrap_or_default(),
             explored: false,
             rounding: rounding(magnitude(poly)),
+            placement: obs.placement,
         });
         if let Some(t) = pending.filter(|t| t.off_gap) {
             self.views[t.view].windows[t.window].no_junction = true;
@@ -682,18 +698,13 @@ impl Known {
         };
         if checked < n {
             let mut covered = std::mem::take(&mut self.views[view].windows[k].covered);
-            let tol = self.sensor.cover_band();
+            let own = self.views[view].placement;
             for (j, v) in self.views.iter().enumerate().skip(checked) {
                 if j != view {
                     cover::side_cover(from, to, &v.polygon, v.bounds, &mut covered);
                     // A wall another scan saw along the window (raw scans only).
-                    if tol > 0.0 && (v.near_bounds(from, tol) || v.near_bounds(to, tol)) {
-                        for b in &v.pieces {
-                            if let BoundaryPiece::Wall { from: p, to: q } = *b {
-                                cover::band_cover(from, to, p, q, tol, &mut covered);
-                            }
-                        }
-                    }
+                    let tol = self.sensor.cover_band_between(own, v.placement);
+                    v.band_cover(from, to, tol, &mut covered);
                 }
             }
             cover::merge(&mut covered);
@@ -1740,6 +1751,7 @@ pub(super) fn act<S>(
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::protocol::polygon::{PLACEMENT_CAP, PLACEMENT_SIGMAS};
 
     /// A corridor 1.2 m wide and 20 m long; in its right wall (0.1 m thick) a door of width
     /// `door` at 10 ≤ y ≤ 10 + door into a 4 × 5 m room. A 0.4 m robot, windows under 0.4 m
@@ -1767,7 +1779,7 @@ mod tests {
             [0.0, 20.0],
         ];
         let vis = Visibility::new(Domain::new(ring.clone(), vec![]).unwrap()).unwrap();
-        let scan = |at: Point| PolygonObservation { at, region: vis.query(at).unwrap() };
+        let scan = |at: Point| PolygonObservation::new(at, vis.query(at).unwrap());
         let setup = RobotSetup {
             footprint: Footprint::disc(0.2).unwrap(),
             sensor: Sensor { min_window: 0.4, ..Sensor::default() },
@@ -1798,7 +1810,7 @@ mod tests {
         let vis = Visibility::new(Domain::new(ring, holes).unwrap()).unwrap();
         let mut k = Known::for_robot(&RobotSetup { sensor, ..RobotSetup::default() });
         for &at in ats {
-            k.add(&PolygonObservation { at, region: vis.query(at).unwrap() });
+            k.add(&PolygonObservation::new(at, vis.query(at).unwrap()));
         }
         k
     }
@@ -1811,7 +1823,7 @@ mod tests {
         let setup =
             RobotSetup { footprint: Footprint::disc(0.2).unwrap(), ..RobotSetup::default() };
         let mut k = Known::for_robot(&setup);
-        k.add(&PolygonObservation { at, region: vis.query(at).unwrap() });
+        k.add(&PolygonObservation::new(at, vis.query(at).unwrap()));
         k
     }
 
@@ -1833,7 +1845,7 @@ mod tests {
             })
             .collect();
         let polygon = verts.iter().map(|v| v.0).collect();
-        PolygonObservation { at, region: VisibilityRegion { viewpoint: at, polygon, boundary } }
+        PolygonObservation::new(at, VisibilityRegion { viewpoint: at, polygon, boundary })
     }
 
     /// A hall 18 × 4 m with a box at 5 ≤ x ≤ 6, 2.6 ≤ y ≤ 3.6, seen as from raw scans (wall
@@ -1844,6 +1856,11 @@ mod tests {
     ///   from x = 8.5 to 17.5;
     /// - from below the box's far occlusion: a wall beside it, 0.15 m off its line.
     fn grazing_views(offset: f64) -> Known {
+        grazing_views_placed(offset, 0.0)
+    }
+
+    /// [`grazing_views`] with the second and third scans placed with spread `placement`.
+    fn grazing_views_placed(offset: f64, placement: f64) -> Known {
         let sensor = Sensor { min_window: 0.4, wall_tolerance: 0.07, ..Sensor::default() };
         let mut k = Known::for_robot(&RobotSetup {
             footprint: Footprint::disc(0.2).unwrap(),
@@ -1871,17 +1888,21 @@ mod tests {
             ],
         ));
         let y = offset;
-        k.add(&raw_region(
+        let placed = |mut o: PolygonObservation| {
+            o.placement = placement;
+            o
+        };
+        k.add(&placed(raw_region(
             [13.0, 0.5 + y],
             &[([8.5, y], wall), ([17.5, y], gap), ([17.5, 2.0], gap), ([8.5, 2.0], gap)],
-        ));
+        )));
         // Along the occlusion from (17.67, 4) to (6, 2.6), `offset` to its near side.
         let (a, b) = ([17.67, 4.0], [6.0, 2.6]);
         let (dx, dy) = (b[0] - a[0], b[1] - a[1]);
         let len = f64::hypot(dx, dy);
         let nrm = [-dy / len, dx / len];
         let at = |t: f64, off: f64| [a[0] + t * dx + off * nrm[0], a[1] + t * dy + off * nrm[1]];
-        k.add(&raw_region(
+        k.add(&placed(raw_region(
             at(0.5, 1.0),
             &[
                 (at(0.8, offset), wall),
@@ -1889,7 +1910,7 @@ mod tests {
                 (at(0.02, 1.5), gap),
                 (at(0.8, 1.5), gap),
             ],
-        ));
+        )));
         k
     }
 
@@ -1938,6 +1959,37 @@ mod tests {
         let occlusion = occlusion_of(&far).unwrap();
         let (t, _) = far.window_target(0, occlusion).unwrap();
         assert_eq!(t.gap, [0.0, 1.0]);
+    }
+
+    /// The gaps of the first scan's view of the hall's bottom wall, and whether each is
+    /// still open.
+    fn bottom_gaps_open(k: &mut Known) -> Vec<bool> {
+        (0..k.views[0].windows.len())
+            .filter(|&i| {
+                let w = &k.views[0].windows[i];
+                w.from[1] == 0.0
+                    && w.to[1] == 0.0
+                    && w.from[0].min(w.to[0]) >= 8.5
+                    && w.from[0].max(w.to[0]) <= 17.5
+            })
+            .collect::<Vec<usize>>()
+            .into_iter()
+            .map(|i| k.window_target(0, i).is_some())
+            .collect()
+    }
+
+    #[test]
+    fn a_scan_placed_unsurely_closes_windows_within_its_spread() {
+        // The bottom wall seen 0.3 m off: beyond the band of two well-placed scans (0.27 m),
+        // within that of a scan placed with a spread of 0.05 m (0.07 + 0.1 + 3 · 0.05 m).
+        assert_eq!(PLACEMENT_SIGMAS, 3.0);
+        assert_eq!(bottom_gaps_open(&mut grazing_views_placed(0.3, 0.0)), vec![true; 4]);
+        assert_eq!(bottom_gaps_open(&mut grazing_views_placed(0.3, 0.04)), vec![true; 4]);
+        assert_eq!(bottom_gaps_open(&mut grazing_views_placed(0.3, 0.05)), vec![false; 4]);
+        // However unsure, a scan's share stops at the cap: 0.07 + 0.1 + 0.3 m.
+        let cap = 0.07 + 0.1 + PLACEMENT_CAP;
+        assert_eq!(bottom_gaps_open(&mut grazing_views_placed(cap - 0.01, 5.0)), vec![false; 4]);
+        assert_eq!(bottom_gaps_open(&mut grazing_views_placed(cap + 0.01, 5.0)), vec![true; 4]);
     }
 
     #[test]
@@ -2143,7 +2195,7 @@ mod tests {
         // handles it without a trip; a robot with a footprint looks from another corner.
         let ring = vec![[0.0, 0.0], [6.0, 0.0], [6.0, 2.0], [2.0, 2.0], [2.0, 6.0], [0.0, 6.0]];
         let vis = Visibility::new(Domain::new(ring.clone(), vec![]).unwrap()).unwrap();
-        let seen = |at: Point| PolygonObservation { at, region: vis.query(at).unwrap() };
+        let seen = |at: Point| PolygonObservation::new(at, vis.query(at).unwrap());
         let mut point = Known::for_robot(&RobotSetup::default());
         point.add(&seen([5.0, 1.0]));
         for mut k in [point, room_seen_from(ring, [5.0, 1.0])] {
@@ -2252,7 +2304,7 @@ mod tests {
         // no part of the window).
         let vis = Visibility::new(Domain::new(ring, vec![]).unwrap()).unwrap();
         k.pending = Some(first);
-        k.add(&PolygonObservation { at: [0.6, 1.0], region: vis.query([0.6, 1.0]).unwrap() });
+        k.add(&PolygonObservation::new([0.6, 1.0], vis.query([0.6, 1.0]).unwrap()));
         assert!(k.window_target(v, w).is_none(), "the part after the cover is a trip");
         assert_eq!(k.skipped.below_rule, before + 1);
         // Never reopened a second time.
@@ -2302,7 +2354,7 @@ mod tests {
             let footprint = Footprint::disc(radius).unwrap();
             let setup = RobotSetup { footprint, ..RobotSetup::default() };
             let mut k = Known::for_robot(&setup);
-            k.add(&PolygonObservation { at, region: vis.query(at).unwrap() });
+            k.add(&PolygonObservation::new(at, vis.query(at).unwrap()));
             for t in all_targets(&mut k) {
                 let [p, q] = k.gap_of(&t);
                 let seen = (0..=64).filter(|&i| {
