@@ -34,15 +34,20 @@ impl Pose {
 
     /// `p`, given in this pose's frame, in the frame the pose is given in.
     pub fn apply(&self, p: Point) -> Point {
-        let (s, c) = self.theta.sin_cos();
-        [self.x + c * p[0] - s * p[1], self.y + s * p[0] + c * p[1]]
+        self.placing().apply(p)
     }
 
     /// The direction `v` (given in this pose's frame) in the frame the pose is given in:
     /// turned by the heading, not moved.
     pub fn turn(&self, v: Point) -> Point {
-        let (s, c) = self.theta.sin_cos();
-        [c * v[0] - s * v[1], s * v[0] + c * v[1]]
+        self.placing().turn(v)
+    }
+
+    /// [`apply`](Self::apply) and [`turn`](Self::turn) for many points, with the heading's
+    /// sine and cosine computed once (the same results to the bit).
+    pub fn placing(&self) -> Placing {
+        let (sin, cos) = self.theta.sin_cos();
+        Placing { x: self.x, y: self.y, sin, cos }
     }
 
     /// This pose followed by `d` (given in this pose's frame): `self ∘ d`.
@@ -223,6 +228,29 @@ mod rep117 {
             }
         }
         d.deserialize_seq(Ranges)
+    }
+}
+
+/// A [`Pose`] ready to place many points: its position, and its heading's sine and cosine.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Placing {
+    x: f64,
+    y: f64,
+    sin: f64,
+    cos: f64,
+}
+
+impl Placing {
+    /// `p`, given in the pose's frame, in the frame the pose is given in.
+    pub fn apply(&self, p: Point) -> Point {
+        let (s, c) = (self.sin, self.cos);
+        [self.x + c * p[0] - s * p[1], self.y + s * p[0] + c * p[1]]
+    }
+
+    /// The direction `v`, given in the pose's frame, turned by the heading.
+    pub fn turn(&self, v: Point) -> Point {
+        let (s, c) = (self.sin, self.cos);
+        [c * v[0] - s * v[1], s * v[0] + c * v[1]]
     }
 }
 

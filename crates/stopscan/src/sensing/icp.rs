@@ -556,7 +556,8 @@ fn align_from(
     }
     out.pose = pose;
     let margin = CROSSING_MARGIN.max(5.0 * params.sigma);
-    out.crossings = map.crossings(pose.at(), points.iter().map(|&q| pose.apply(q)), margin);
+    let placing = pose.placing();
+    out.crossings = map.crossings(pose.at(), points.iter().map(|&q| placing.apply(q)), margin);
     let (shift, turn) = out.correction();
     if shift > params.max_shift || turn.abs() > params.max_turn {
         out.fallback = Some(Fallback::Implausible);
@@ -673,10 +674,11 @@ fn for_each_pair(
     mut f: impl FnMut(u32, f64, [f64; 3], f64),
 ) {
     let c = pose.at();
+    let placing = pose.placing();
     let w2 = 1.0 / params.sigma.max(0.01).powi(2);
     for (i, p) in points.iter().enumerate() {
-        let q = pose.apply(*p);
-        let normal = normals.get(i).copied().flatten().map(|m| pose.turn(m));
+        let q = placing.apply(*p);
+        let normal = normals.get(i).copied().flatten().map(|m| placing.turn(m));
         let Some((n, a, _, id)) = map.nearest(q, c, gate, normal) else { continue };
         let r = n[0] * (q[0] - a[0]) + n[1] * (q[1] - a[1]);
         let w = w2 * if r.abs() <= params.huber { 1.0 } else { params.huber / r.abs() };

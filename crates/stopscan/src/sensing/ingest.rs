@@ -194,7 +194,8 @@ pub fn ingest(
     b.kinds = filled;
     cleaning.returns -= cleaning.spurious.min(cleaning.returns);
     let t = b.trace();
-    let to_map = |p: Point| pose.apply(p);
+    let placing = pose.placing();
+    let to_map = |p: Point| placing.apply(p);
     let at = pose.at();
     let polygon: Vec<Point> = t.verts.iter().map(|v| to_map(v.0)).collect();
     let m = polygon.len();

@@ -269,7 +269,8 @@ impl Mapper {
             placed: estimate,
         });
         self.place_walls();
-        let place = |q: Point| estimate.apply(q);
+        let placing = estimate.placing();
+        let place = |q: Point| placing.apply(q);
         let mut observation = local.observation.mapped(place);
         observation.placement = placement;
         Ok(Reading { observation, estimate, alignment, links, placement, cleaning: local.cleaning })
@@ -361,6 +362,7 @@ impl Mapper {
         });
         let place = |map: &mut WallMap, k: usize, s: &Kept, at: &Pose| {
             let placed = |w: &[[Point; 2]]| -> Vec<[Point; 2]> {
+                let at = at.placing();
                 w.iter().map(|w| [at.apply(w[0]), at.apply(w[1])]).collect()
             };
             let (walls, bridges) = (placed(&s.walls), placed(&s.bridges));
