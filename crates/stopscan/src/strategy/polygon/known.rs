@@ -1925,23 +1925,9 @@ mod tests {
         // (6, 2.6), each placed 0.15 m off: beyond the noise, within the band. The first
         // scan's gaps between returns on the bottom wall (both ends on y = 0) there are
         // closed; placed 0.3 m off, they stay open, as they do with an exact sensor.
-        let gaps = |k: &Known| -> Vec<usize> {
-            (0..k.views[0].windows.len())
-                .filter(|&i| {
-                    let w = &k.views[0].windows[i];
-                    w.from[1] == 0.0
-                        && w.to[1] == 0.0
-                        && w.from[0].min(w.to[0]) >= 8.5
-                        && w.from[0].max(w.to[0]) <= 17.5
-                })
-                .collect()
-        };
-        let open_parts = |mut k: Known| {
-            gaps(&k).into_iter().map(|i| k.window_target(0, i).is_some()).collect::<Vec<bool>>()
-        };
-        assert_eq!(gaps(&k).len(), 4);
-        assert_eq!(open_parts(k.clone()), vec![false; 4]);
-        assert_eq!(open_parts(grazing_views(0.3)), vec![true; 4]);
+        assert_eq!(bottom_gaps(&k).len(), 4);
+        assert_eq!(bottom_gaps_open(&mut k.clone()), vec![false; 4]);
+        assert_eq!(bottom_gaps_open(&mut grazing_views(0.3)), vec![true; 4]);
         // The occlusion is closed where the wall runs beside it; what is left before that (2%
         // of its 11.75 m) is below the rule's 0.4 m, and what is left beyond stays open.
         let occlusion_of = |k: &Known| {
@@ -1961,9 +1947,9 @@ mod tests {
         assert_eq!(t.gap, [0.0, 1.0]);
     }
 
-    /// The gaps of the first scan's view of the hall's bottom wall, and whether each is
-    /// still open.
-    fn bottom_gaps_open(k: &mut Known) -> Vec<bool> {
+    /// The first scan's gaps between returns on the hall's bottom wall (both ends on y = 0)
+    /// where the second scan saw it, from x = 8.5 to 17.5: their window indices.
+    fn bottom_gaps(k: &Known) -> Vec<usize> {
         (0..k.views[0].windows.len())
             .filter(|&i| {
                 let w = &k.views[0].windows[i];
@@ -1972,10 +1958,12 @@ mod tests {
                     && w.from[0].min(w.to[0]) >= 8.5
                     && w.from[0].max(w.to[0]) <= 17.5
             })
-            .collect::<Vec<usize>>()
-            .into_iter()
-            .map(|i| k.window_target(0, i).is_some())
             .collect()
+    }
+
+    /// Whether each of [`bottom_gaps`] is still open.
+    fn bottom_gaps_open(k: &mut Known) -> Vec<bool> {
+        bottom_gaps(k).into_iter().map(|i| k.window_target(0, i).is_some()).collect()
     }
 
     #[test]
