@@ -440,6 +440,10 @@ fn explore_json(
 struct PyStrategy {
     inner: Box<dyn stopscan::strategy::polygon::PolygonStrategy + Send>,
     feedback: Option<PolygonFeedback>,
+    /// The frame the strategy computes in, [`stopscan::geometry::Frame::near`] the start: the
+    /// driver's coordinates may be georeferenced (millions of metres), while the strategy's
+    /// tolerances are a map's.
+    frame: stopscan::geometry::Frame,
 }
 
 #[pymethods]
@@ -458,7 +462,7 @@ impl PyStrategy {
             explore_options(name, scan_time, move_time, speed, range, robot_radius, 0, None, None)?;
         let setup = o.robot_for(None);
         let inner = stopscan::strategy::polygon::build_for(name, &setup).map_err(value_error)?;
-        Ok(Self { inner, feedback: None })
+        Ok(Self { inner, feedback: None, frame: stopscan::geometry::Frame::IDENTITY })
     }
 
     /// The strategy's registry name.
@@ -486,14 +490,22 @@ impl PyStrategy {
         if given != 1 {
             return Err(value_error("observe takes exactly one of start, arrived, region, failed"));
         }
+        if let Some(s) = start {
+            if !(s.0.is_finite() && s.1.is_finite()) {
+                return Err(value_error(format!("start: must be finite, got {s:?}")));
+            }
+            self.frame = stopscan::geometry::Frame::near([s.0, s.1]);
+        }
+        let frame = self.frame;
         self.feedback = Some(if let Some(s) = start {
-            Feedback::Start { at: [s.0, s.1] }
+            Feedback::Start { at: frame.to_local([s.0, s.1]) }
         } else if arrived {
             Feedback::Arrived
         } else if let Some(r) = region {
-            Feedback::Scanned(PolygonObservation::new(r.region.viewpoint, r.region.clone()))
+            let region = r.region.mapped(|p| frame.to_local(p));
+            Feedback::Scanned(PolygonObservation::new(region.viewpoint, region))
         } else {
-            let at = failed.map(|f| [f.0, f.1]).unwrap_or_default();
+            let at = frame.to_local(failed.map(|f| [f.0, f.1]).unwrap_or_default());
             let reason = match reason {
                 "blocked" => MoveFailure::Blocked,
                 "aborted" => MoveFailure::Aborted,
@@ -521,6 +533,7 @@ impl PyStrategy {
         match action {
             Action::MoveTo { to } => {
                 d.set_item("type", "move")?;
+                let to = self.frame.to_input(to);
                 d.set_item("to", (to[0], to[1]))?;
             }
             Action::Scan => d.set_item("type", "scan")?,

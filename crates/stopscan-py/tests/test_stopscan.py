@@ -171,28 +171,65 @@ def test_explore_records_equal_the_cli_byte_for_byte(tmp_path):
         assert record == json.loads(out.read_text())
 
 
+def drive(env, strategy):
+    """Drives a strategy with the exact sensor from the environment's start: its scans."""
+    at = env.start
+    strategy.observe(start=at)
+    scans = []
+    while len(scans) < 1000:
+        action = strategy.next_action()
+        if action["type"] == "done":
+            return scans
+        if action["type"] == "move":
+            at = action["to"]
+            strategy.observe(arrived=True)
+        else:
+            region = stopscan.visibility(env, [at])[0]
+            scans.append(region.viewpoint)
+            strategy.observe(region=region)
+    raise AssertionError("no end after 1000 scans")
+
+
 def test_a_python_driver_reproduces_the_run():
     """Driving a strategy step by step, with the exact sensor, is the simulator's run."""
     office = stopscan.load(OFFICE)
     record = stopscan.explore(office, optimum_seconds=0)
-    s = stopscan.Strategy("depth_first")
-    at = office.start
-    s.observe(start=at)
-    scans = []
-    while True:
-        action = s.next_action()
-        if action["type"] == "done":
-            break
-        if action["type"] == "move":
-            at = action["to"]
-            s.observe(arrived=True)
-        else:
-            region = stopscan.visibility(office, [at])[0]
-            scans.append(region.viewpoint)
-            s.observe(region=region)
+    scans = drive(office, stopscan.Strategy("depth_first"))
     want = [tuple(x["at"]) for x in record["robots"][0]["scans"]]
     assert scans == want
 
+
+def test_a_georeferenced_driver_gets_the_same_run_moved(tmp_path):
+    """The office moved by UTM-sized offsets: every strategy, with a footprint, scans at the
+    same places moved by the same offsets, as long as the two runs take the same decisions.
+    (Strategies' tolerances are a map's; handed coordinates of millions of metres, these runs
+    once stopped after their first scan.)"""
+    # Coordinates on a 2^-20 m grid, so that both offices are exact. The regions handed to
+    # the driver are rounded to the far coordinates' spacing (1e-9 m), so that a near tie
+    # between two goals may still be decided the other way later in the run.
+    grid = 2.0 ** 20
+
+    def moved(c, shift):
+        if isinstance(c[0], (int, float)):
+            return [round(c[k] * grid) / grid + shift[k] for k in range(2)]
+        return [moved(x, shift) for x in c]
+
+    def office(shift):
+        feature = json.loads(OFFICE.read_text())
+        feature["geometry"]["coordinates"] = moved(feature["geometry"]["coordinates"], shift)
+        feature["properties"]["start"] = moved(feature["properties"]["start"], shift)
+        path = tmp_path / f"office-{shift[0]}.geojson"
+        path.write_text(json.dumps(feature))
+        return stopscan.load(path)
+
+    shift = (4_500_480.0, -5_300_224.0)
+    near, far = office((0.0, 0.0)), office(shift)
+    for name in ("depth_first", "cost_aware", "explore_lite"):
+        want = drive(near, stopscan.Strategy(name, robot_radius=0.2))
+        got = drive(far, stopscan.Strategy(name, robot_radius=0.2))
+        assert abs(len(got) - len(want)) <= 0.1 * len(want), (name, len(got), len(want))
+        for g, w in zip(got[:10], want[:10]):
+            assert abs(g[0] - shift[0] - w[0]) < 1e-6 and abs(g[1] - shift[1] - w[1]) < 1e-6, name
 
 def test_bad_input_is_a_clear_error():
     with pytest.raises(ValueError, match="shape"):

@@ -278,6 +278,76 @@ fn kill_9_at_random_moments_then_resume_ends_byte_identical() {
     assert_eq!(std::fs::read(&journal).unwrap(), std::fs::read(&clean).unwrap());
 }
 
+/// Georeferenced odometry: a session whose every reported pose is moved by UTM-sized offsets
+/// gets the same replies, moved by the same offsets. The simulated robot's poses are rounded
+/// to 2⁻²⁰ m so that both sessions' poses are exact, and the offsets are whole multiples of
+/// the 1,024 m grid the server's local frame is rounded to; the server then computes the same
+/// numbers in both, and only the output's rounding differs. (Computed in place, the constructed points
+/// rounded to the coordinates' magnitude: this session once ended as "explored" after its
+/// first scan at x = 5e6.)
+#[test]
+fn odometry_far_from_its_origin_gets_the_same_goals_moved() {
+    let (world, start) = office();
+    // Whole multiples of the local frame's 1,024 m grid: the two sessions compute the same.
+    let shift = [4_500_480.0, -5_300_224.0];
+    let xy = |v: &Value, k: usize| v[["x", "y"][k]].as_f64().unwrap();
+    let (mut near, mut far) = (Server::spawn(&[]), Server::spawn(&[]));
+    let mut client = client(&world, start, "cost_aware", 7);
+    let mut line = client.start();
+    let mut goals = 0;
+    loop {
+        let mut request: Value = serde_json::from_str(&line).unwrap();
+        let seq = request["seq"].clone();
+        let grid = f64::from(1 << 20);
+        for k in 0..2 {
+            let v = (xy(&request["pose"], k) * grid).round() / grid;
+            request["pose"][["x", "y"][k]] = json!(v);
+        }
+        let want = near.ask(&request.to_string()).unwrap();
+        for k in 0..2 {
+            let v = xy(&request["pose"], k) + shift[k];
+            request["pose"][["x", "y"][k]] = json!(v);
+        }
+        let got = far.ask(&request.to_string()).unwrap();
+        assert_eq!(got["type"], want["type"], "step {seq}: {got} against {want}");
+        let mut poses = vec!["goal", "map_goal"];
+        if !want["localised"].is_null() {
+            poses.push("localised.pose");
+            assert_eq!(got["localised"]["placement_sd"], want["localised"]["placement_sd"]);
+            if !want["localised"]["alignment"].is_null() {
+                poses.extend(["localised.alignment.guess", "localised.alignment.pose"]);
+            }
+        }
+        for path in poses {
+            let (g, w) = path.split('.').fold((&got, &want), |(g, w), key| (&g[key], &w[key]));
+            if w.is_null() {
+                continue;
+            }
+            goals += usize::from(path == "goal");
+            for k in 0..2 {
+                let d = xy(g, k) - shift[k] - xy(w, k);
+                assert!(d.abs() < 1e-8, "step {seq}: {path} off by {d}");
+            }
+            // Headings on the circle (a goal straight behind is at ±π); a goal's is computed
+            // from where the robot stands, which the far odometry holds to 1e-9 m.
+            let dt = g["theta"].as_f64().unwrap() - w["theta"].as_f64().unwrap();
+            let dt = dt.sin().atan2(dt.cos());
+            assert!(dt.abs() < 1e-8, "step {seq}: {path} heading off by {dt}");
+        }
+        match client.answer(&want).unwrap() {
+            Some(next) => line = next,
+            None => {
+                assert_eq!(want["reason"], "explored", "{want}");
+                assert_eq!(got["summary"]["scans"], want["summary"]["scans"]);
+                break;
+            }
+        }
+    }
+    near.finish();
+    far.finish();
+    assert!(goals > 10, "{goals} goals compared");
+}
+
 #[test]
 fn the_same_session_over_tcp() {
     let (world, start) = office();
@@ -348,6 +418,7 @@ fn malformed_messages_get_errors_that_name_the_field() {
         (json!({"protocol": "stopscan/9", "seq": 0, "type": "start"}).to_string(), Some("protocol"), "stopscan/1"),
         (json!({"protocol": "stopscan/1", "seq": 0, "type": "start"}).to_string(), Some("pose"), "missing field"),
         (json!({"protocol": "stopscan/1", "seq": 0, "type": "start", "pose": {"x": "a", "y": 0, "theta": 0}}).to_string(), Some("pose.x"), "invalid type"),
+        (json!({"protocol": "stopscan/1", "seq": 0, "type": "start", "pose": {"x": 0, "y": 1e308, "theta": 0}}).to_string(), Some("pose.y"), "within ±1000000000 m"),
         (json!({"protocol": "stopscan/1", "seq": 0, "type": "start", "pose": {"x": 0, "y": 0, "theta": 0}, "speed": 2}).to_string(), Some("speed"), "unknown field"),
         (json!({"protocol": "stopscan/1", "seq": 0, "type": "start", "pose": {"x": 0, "y": 0, "theta": 0}, "strategy": "warp"}).to_string(), Some("strategy"), "unknown strategy"),
         (json!({"protocol": "stopscan/1", "seq": 0, "type": "start", "pose": {"x": 0, "y": 0, "theta": 0}, "cost": {"scan_time": -1, "speed": 1}}).to_string(), Some("cost"), "scan_time"),

@@ -47,7 +47,10 @@ class OtherAction(TypedDict):
     type: Literal["scan", "done"]
 
 class Strategy:
-    """An online exploration strategy, driven step by step."""
+    """An online exploration strategy, driven step by step.
+
+    Coordinates are the driver's own, georeferenced ones included: the strategy computes in
+    a frame at the start, rounded to a multiple of 1,024 m, and answers in the driver's."""
     def __init__(
         self,
         name: str = "depth_first",

@@ -56,6 +56,24 @@ impl Frame {
         Self { origin: [axis(0), axis(1)] }
     }
 
+    /// The frame for computations that start at `p` before the shape is known (a robot's
+    /// odometry, say): per axis, the origin is `p` rounded to a multiple of [`Self::STEP`].
+    /// That is the identity within `STEP / 2` of the origin, so runs near it compute as they
+    /// always did; far from it, `x − origin` is exact for every `x` within `STEP / 2` of `p`
+    /// (Sterbenz again), and two starts that differ by a multiple of `STEP` compute the same
+    /// numbers.
+    pub fn near(p: Point) -> Self {
+        let axis = |v: f64| {
+            let o = (v / Self::STEP).round() * Self::STEP;
+            if o.is_finite() { o } else { 0.0 }
+        };
+        Self { origin: [axis(p[0]), axis(p[1])] }
+    }
+
+    /// The grid [`Self::near`] rounds to, metres: larger than a building, small enough that
+    /// tolerances scaled to the coordinates' magnitude stay below a millimetre.
+    pub const STEP: f64 = 1024.0;
+
     /// Whether this is the identity.
     pub fn is_identity(&self) -> bool {
         self.origin == [0.0, 0.0]
@@ -83,6 +101,24 @@ impl Frame {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn a_start_far_away_moves_the_frame_by_whole_steps() {
+        assert!(Frame::near([0.5, -511.9]).is_identity());
+        assert_eq!(Frame::near([4_500_480.7, -5_300_224.2]).origin, [4_500_480.0, -5_300_224.0]);
+        assert_eq!(Frame::near([600.0, -1600.0]).origin, [1024.0, -2048.0]);
+        // Exact: a point 500 m off the start comes back bit for bit, and two starts a whole
+        // number of steps apart see the same local coordinates.
+        let f = Frame::near([4_500_480.7, 1e9]);
+        for p in [[4_500_000.123_456_789, 1e9 - 499.987_654_321], [4_500_980.1, 1e9 + 0.3]] {
+            assert_eq!(f.to_input(f.to_local(p)), p);
+        }
+        let (near, far) = (Frame::near([0.7, 0.0]), Frame::near([4_500_480.7, -5_300_224.2]));
+        let q = [3.25, -1.125];
+        assert_eq!(near.to_local(q), far.to_local([q[0] + 4_500_480.0, q[1] - 5_300_224.0]));
+        assert_eq!(Frame::near([f64::MAX, 0.0]).to_local([f64::MAX, 1.0]), [0.0, 1.0]);
+        assert!(Frame::near([f64::INFINITY, f64::NAN]).is_identity());
+    }
 
     #[test]
     fn maps_near_the_origin_stay_put() {

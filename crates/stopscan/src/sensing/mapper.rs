@@ -144,6 +144,11 @@ struct Kept {
 }
 
 /// The walls seen so far, and how new scans are read against them.
+///
+/// Give it poses in a frame near the map, as the strategies its observations feed: their
+/// tolerances grow with the coordinates' magnitude, so that odometry millions of metres from
+/// its origin (a georeferenced frame) makes them coarser than a map's features. `serve` moves
+/// the robot's poses to a frame near its start ([`crate::geometry::Frame::near`]) first.
 #[derive(Debug, Clone)]
 pub struct Mapper {
     params: MapperParams,

@@ -7,6 +7,7 @@ use super::message::{
     ScanIn, StartIn, Summary,
 };
 use super::roi::{Outcome, RoiRun};
+use crate::geometry::Frame;
 use crate::kernel::{Num, Point};
 use crate::pipeline::explore::{
     DEFAULT_POCKET_BUDGET, DEFAULT_POCKET_CAP, default_min_pocket, raw_scan_planning,
@@ -113,8 +114,14 @@ struct PolygonRun {
     cost: CostModel,
     mapper: Mapper,
     odometry: Odometry,
-    /// The map frame from the odometry frame.
+    /// The map frame from the odometry frame, both moved by `local`: the local map frame
+    /// from the local odometry frame.
     correction: Pose,
+    /// Where the frames the mapper and the strategy compute in lie in the map frame and in the
+    /// odometry frame: [`Frame::near`] the start, the identity within 512 m of the origin.
+    /// Odometry far from its origin (a georeferenced frame, say) would otherwise scale the
+    /// strategies' tolerances (made relative to the coordinates' magnitude) far beyond a map's.
+    local: Frame,
 }
 
 struct CornerRun {
@@ -299,13 +306,33 @@ fn single(request: &Request) -> Result<(), ProtocolError> {
     }
 }
 
-/// A pose must be finite.
+/// The largest position coordinate a pose may have, metres. Doubles there are 1.2e-7 m apart,
+/// fine enough for a robot's motion; far beyond it (1e16 m, say) a metre's drive does not
+/// change the number at all, and a goal would be sent to where the robot stands.
+pub(super) const MAX_COORDINATE: f64 = 1e9;
+
+/// A pose must be finite, and its position within [`MAX_COORDINATE`] of the odometry
+/// frame's origin.
 pub(super) fn check_pose(field: &str, p: &Pose) -> Result<(), ProtocolError> {
-    if p.is_finite() {
-        Ok(())
-    } else {
-        Err(ProtocolError::field(field, format!("every coordinate must be finite, got {p:?}")))
+    if !p.is_finite() {
+        return Err(ProtocolError::field(
+            field,
+            format!("every coordinate must be finite, got {p:?}"),
+        ));
     }
+    for (axis, v) in [("x", p.x), ("y", p.y)] {
+        if v.abs() > MAX_COORDINATE {
+            return Err(ProtocolError::field(
+                format!("{field}.{axis}"),
+                format!(
+                    "must lie within ±{} m of the odometry frame's origin, got {}",
+                    Num(MAX_COORDINATE),
+                    Num(v)
+                ),
+            ));
+        }
+    }
+    Ok(())
 }
 
 /// A number must be finite and at least 0.
@@ -437,7 +464,8 @@ impl One {
                 let (dx, dy) = (to[0] - here.x, to[1] - here.y);
                 let heading = if dx == 0.0 && dy == 0.0 { here.theta } else { dy.atan2(dx) };
                 let map_goal = Pose::new(to, heading);
-                (r.correction.inverse().compose(&map_goal), map_goal, None)
+                let goal = r.correction.inverse().compose(&map_goal);
+                (r.to_input(goal), r.to_input(map_goal), None)
             }
             Self::Corner(r) => {
                 let stop = r.target.expect("a corner goal has its stop");
@@ -537,12 +565,19 @@ impl PolygonRun {
             mapper: Mapper::new(params),
             odometry: Odometry::new(s.pose),
             correction: Pose::default(),
+            local: Frame::near(s.pose.at()),
         })
     }
 
-    /// A pose in the odometry frame, in the map frame.
+    /// A pose in the odometry frame, in the local map frame.
     fn map_pose(&self, odometry: Pose) -> Pose {
-        self.correction.compose(&odometry)
+        let at = self.local.to_local(odometry.at());
+        self.correction.compose(&Pose::new(at, odometry.theta))
+    }
+
+    /// A pose of a local frame in the input's frame (map or odometry).
+    fn to_input(&self, local: Pose) -> Pose {
+        Pose::new(self.local.to_input(local.at()), local.theta)
     }
 
     fn scanned(&mut self, s: &ScanIn) -> Result<(Action<Point>, Option<Localised>), ProtocolError> {
@@ -567,13 +602,18 @@ impl PolygonRun {
         self.odometry = odometry;
         self.odometry.since_scan = 0.0;
         self.odometry.tally.scans += 1;
-        let estimate = reading.estimate;
-        self.correction = estimate.compose(&s.pose.inverse());
+        let odometry = Pose::new(self.local.to_local(s.pose.at()), s.pose.theta);
+        self.correction = reading.estimate.compose(&odometry.inverse());
+        let estimate = self.to_input(reading.estimate);
         let action = self.strategy.act(&Feedback::Scanned(reading.observation));
+        let alignment = reading.alignment.map(|mut a| {
+            (a.guess, a.pose) = (self.to_input(a.guess), self.to_input(a.pose));
+            a
+        });
         let localised = Localised {
             pose: estimate,
-            correction: self.correction,
-            alignment: reading.alignment,
+            correction: estimate.compose(&s.pose.inverse()),
+            alignment,
             placement_sd: reading.placement,
             cleaning: reading.cleaning,
         };
