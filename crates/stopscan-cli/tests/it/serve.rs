@@ -282,9 +282,9 @@ fn kill_9_at_random_moments_then_resume_ends_byte_identical() {
 /// gets the same replies, moved by the same offsets. The simulated robot's poses are rounded
 /// to 2⁻²⁰ m so that both sessions' poses are exact, and the offsets are whole multiples of
 /// the 1,024 m grid the server's local frame is rounded to; the server then computes the same
-/// numbers in both, and only the output's rounding differs. (Computed in place, the constructed points
-/// rounded to the coordinates' magnitude: this session once ended as "explored" after its
-/// first scan at x = 5e6.)
+/// numbers in both, and only the output's rounding differs. (Computed in place, the
+/// strategies' tolerances grew with the coordinates: this session once ended as "explored"
+/// after its first scan at x = 5e6.)
 #[test]
 fn odometry_far_from_its_origin_gets_the_same_goals_moved() {
     let (world, start) = office();
@@ -304,8 +304,8 @@ fn odometry_far_from_its_origin_gets_the_same_goals_moved() {
             request["pose"][["x", "y"][k]] = json!(v);
         }
         let want = near.ask(&request.to_string()).unwrap();
-        for k in 0..2 {
-            let v = xy(&request["pose"], k) + shift[k];
+        for (k, d) in shift.iter().enumerate() {
+            let v = xy(&request["pose"], k) + d;
             request["pose"][["x", "y"][k]] = json!(v);
         }
         let got = far.ask(&request.to_string()).unwrap();
@@ -324,8 +324,8 @@ fn odometry_far_from_its_origin_gets_the_same_goals_moved() {
                 continue;
             }
             goals += usize::from(path == "goal");
-            for k in 0..2 {
-                let d = xy(g, k) - shift[k] - xy(w, k);
+            for (k, s) in shift.iter().enumerate() {
+                let d = xy(g, k) - s - xy(w, k);
                 assert!(d.abs() < 1e-8, "step {seq}: {path} off by {d}");
             }
             // Headings on the circle (a goal straight behind is at ±π); a goal's is computed
@@ -334,14 +334,12 @@ fn odometry_far_from_its_origin_gets_the_same_goals_moved() {
             let dt = dt.sin().atan2(dt.cos());
             assert!(dt.abs() < 1e-8, "step {seq}: {path} heading off by {dt}");
         }
-        match client.answer(&want).unwrap() {
-            Some(next) => line = next,
-            None => {
-                assert_eq!(want["reason"], "explored", "{want}");
-                assert_eq!(got["summary"]["scans"], want["summary"]["scans"]);
-                break;
-            }
-        }
+        let Some(next) = client.answer(&want).unwrap() else {
+            assert_eq!(want["reason"], "explored", "{want}");
+            assert_eq!(got["summary"]["scans"], want["summary"]["scans"]);
+            break;
+        };
+        line = next;
     }
     near.finish();
     far.finish();

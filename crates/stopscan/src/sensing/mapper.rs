@@ -320,7 +320,7 @@ impl Mapper {
             let from = self.graph.poses()[j];
             let stop = &self.kept[j];
             let start = from.inverse().compose(initial);
-            let a = icp::align(points, normals, &start, Some(LINK_PRIOR), &stop.local, icp);
+            let a = icp::align_near(points, normals, &start, Some(LINK_PRIOR), &stop.local, icp);
             if a.fallback.is_some() || !a.converged || a.pairs < LINK_MIN_PAIRS {
                 continue;
             }
