@@ -46,6 +46,15 @@ pub struct IcpParams {
     pub max_rms: f64,
     /// The range noise the residuals are weighed by, metres (at least 1 cm is used).
     pub sigma: f64,
+    /// How far around the guess [`align`] searches, at most, when its alignment sees through
+    /// walls in part, metres; 0 searches nowhere (matches to a single stop's walls, where
+    /// another place along them is found as readily).
+    #[serde(default = "default_search_span")]
+    pub search_span: f64,
+}
+
+fn default_search_span() -> f64 {
+    SEARCH_SPAN
 }
 
 impl Default for IcpParams {
@@ -61,6 +70,7 @@ impl Default for IcpParams {
             max_turn: 20f64.to_radians(),
             max_rms: 0.1,
             sigma: 0.02,
+            search_span: SEARCH_SPAN,
         }
     }
 }
@@ -427,7 +437,7 @@ const SURPRISE: f64 = 4.0;
 /// When the first alignment sees through walls in part and no restart did better, the
 /// guess itself may be metres off (a long drive whose heading drifted), and a wide gate
 /// slid the scan onto the next aisle's shelves. Starts on a grid around the guess, out to
-/// three of the prior's deviations (at most [`SEARCH_SPAN`], in at most four steps each way
+/// three of the prior's deviations (at most [`IcpParams::search_span`], in at most four steps each way
 /// and steps of at least a third of [`IcpParams::gate_start`]), each with a gate of one step
 /// (at least twice [`IcpParams::gate_end`]), look for an alignment that does not; one found
 /// within the square is kept even beyond the prior. An alignment beyond the prior that sees
@@ -439,32 +449,6 @@ pub fn align(
     prior: Option<Prior>,
     map: &WallMap,
     params: &IcpParams,
-) -> Alignment {
-    align_searching(points, normals, guess, prior, map, params, true)
-}
-
-/// [`align`] without the search around the guess: for matching a scan to one earlier stop's
-/// walls, where a search would find another place along them as readily.
-pub fn align_near(
-    points: &[Point],
-    normals: &[Option<Point>],
-    guess: &Pose,
-    prior: Option<Prior>,
-    map: &WallMap,
-    params: &IcpParams,
-) -> Alignment {
-    align_searching(points, normals, guess, prior, map, params, false)
-}
-
-/// [`align`], with or without the search around the guess.
-fn align_searching(
-    points: &[Point],
-    normals: &[Option<Point>],
-    guess: &Pose,
-    prior: Option<Prior>,
-    map: &WallMap,
-    params: &IcpParams,
-    search: bool,
 ) -> Alignment {
     // How many of odometry's standard deviations the correction is (0 without a prior).
     let surprise = |a: &Alignment| {
@@ -517,12 +501,12 @@ fn align_searching(
             best = a;
         }
     }
-    let Some(p) =
-        prior.filter(|_| search && first.sees_through_walls_in_part() && rank(&best).0 > 0)
-    else {
+    let Some(p) = prior.filter(|_| {
+        params.search_span > 0.0 && first.sees_through_walls_in_part() && rank(&best).0 > 0
+    }) else {
         return odometry_unless_trusted(best, surprise(&best) > SURPRISE);
     };
-    let span = (3.0 * (p.position + p.heading * 10.0)).min(SEARCH_SPAN);
+    let span = (3.0 * (p.position + p.heading * 10.0)).min(params.search_span);
     let step = (span / SEARCH_STEPS as f64).max(params.gate_start / 3.0);
     let n = (span / step).floor() as i32;
     // A start lies within `step / √2` of any place in the square: a gate of one step finds
@@ -575,7 +559,8 @@ fn odometry_unless_trusted(mut a: Alignment, surprising: bool) -> Alignment {
 pub const SUSPECT_CROSSINGS: f64 = 0.1;
 
 /// How far around the guess the search for an alignment that does not see through walls
-/// reaches, metres at most, and in how many steps each way.
+/// reaches by default, metres at most ([`IcpParams::search_span`]), and in how many steps
+/// each way.
 pub const SEARCH_SPAN: f64 = 4.0;
 const SEARCH_STEPS: usize = 4;
 
@@ -1227,7 +1212,8 @@ mod tests {
                         "{truth:?} from {guess:?}: {a:?}"
                     );
                     assert_eq!(a.crossings, 0, "{a:?}");
-                    let restarted = align_near(&pts, &[], &guess, Some(prior), &map, &params);
+                    let restarts = IcpParams { search_span: 0.0, ..params };
+                    let restarted = align(&pts, &[], &guess, Some(prior), &map, &restarts);
                     if f64::abs(dx) > 2.2 {
                         assert!(off(&restarted) > 1.0, "{guess:?}: {restarted:?}");
                     }

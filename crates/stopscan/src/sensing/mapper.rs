@@ -316,11 +316,13 @@ impl Mapper {
         graph.optimize(GRAPH_STEPS);
         let base = graph.error();
         let mut tried: Vec<(f64, Edge)> = Vec::new();
+        // One stop's walls: another place along them is found as readily, so no search.
+        let single = IcpParams { search_span: 0.0, ..*icp };
         for (_, j) in near {
             let from = self.graph.poses()[j];
             let stop = &self.kept[j];
             let start = from.inverse().compose(initial);
-            let a = icp::align_near(points, normals, &start, Some(LINK_PRIOR), &stop.local, icp);
+            let a = icp::align(points, normals, &start, Some(LINK_PRIOR), &stop.local, &single);
             if a.fallback.is_some() || !a.converged || a.pairs < LINK_MIN_PAIRS {
                 continue;
             }
