@@ -1370,6 +1370,13 @@ impl Known {
             .any(|shape| holds(shape, a) && Approach::with_holes(shape, c).clear(a, b))
     }
 
+    /// Whether the straight move from `a` to `b` lies inside the region of some view, keeping
+    /// the footprint's clearance from its boundary ([`Known::straight_in`]), as the moves of
+    /// the tree of moves do.
+    pub(super) fn straight_in_a_view(&self, a: Point, b: Point) -> bool {
+        (0..self.views.len()).any(|w| self.straight_in(w, a, b))
+    }
+
     /// Whether the straight move from `a` to `b` lies inside view `w`'s region, `a` inside it
     /// or its viewpoint, keeping the footprint's clearance from its boundary.
     fn straight_in(&self, w: usize, a: Point, b: Point) -> bool {
@@ -2375,6 +2382,27 @@ mod tests {
         // A gap holding an interval whole removes it; one between intervals changes nothing.
         assert_eq!(uncover(&covered, [0.25, 0.65]), [[0.0, 0.2], [0.7, 1.0]]);
         assert_eq!(uncover(&covered, [0.2, 0.3]), covered);
+    }
+
+    #[test]
+    fn a_move_inside_one_views_region_keeping_the_clearance_is_straight_in_a_view() {
+        // The corridor (0 ≤ x ≤ 1.2) seen from (0.6, 4) and (0.6, 16), a 0.2 m robot.
+        let (k, _) = corridor_views_and_walls(1.0);
+        let c = k.clearance(0);
+        assert!(c >= 0.2, "{c}");
+        // Along the corridor's middle, from a viewpoint or from any point inside a region.
+        assert!(k.straight_in_a_view([0.6, 4.0], [0.6, 6.0]));
+        assert!(k.straight_in_a_view([0.5, 7.0], [0.7, 12.0]));
+        // Not nearer a wall than the clearance, not through a wall, not from outside.
+        assert!(!k.straight_in_a_view([0.6, 4.0], [1.1, 6.0]));
+        assert!(!k.straight_in_a_view([0.6, 4.0], [3.0, 9.0]));
+        assert!(!k.straight_in_a_view([3.0, 9.0], [0.6, 4.0]));
+        // Whatever it accepts keeps the clearance in the union of the regions too.
+        let mut k = k;
+        k.update_seen();
+        for (a, b) in [([0.6, 4.0], [0.6, 6.0]), ([0.5, 7.0], [0.7, 12.0])] {
+            assert!(k.clear_in_seen(a, b, c), "{a:?} {b:?}");
+        }
     }
 
     #[test]
