@@ -487,6 +487,20 @@ fn cost_aware_closes_slivers_in_front_of_walls_seen_and_says_so() {
     assert!(r["sensor"].get("windows_into_walled_pockets").is_none(), "{}", r["sensor"]);
 }
 
+/// `cost_aware` on `map` from raw scans, with `bench floors`' robot and the lidar and
+/// drift: the run record, written to `out`.
+fn raw_cost_aware_run(map: &str, seed: &str, out: &std::path::Path) -> Value {
+    let mut args = vec!["--seed", seed, "explore", "--env", map, "--strategy", "cost_aware"];
+    args.extend(["--robot-radius", "0.2", "--range", "20", "--scan-time", "30"]);
+    args.extend(["--speed", "0.5", "--optimum-seconds", "0", "--bounds-seconds", "0"]);
+    args.extend(["--greedy-max-vertices", "0", "--odometry-drift", "0.01"]);
+    args.extend(["--sensor", "lidar:beams=720,max=20,sigma=0.02,dropout=0.01"]);
+    args.extend(["--out", out.to_str().unwrap()]);
+    let printed = stopscan(&args);
+    assert!(printed.status.success(), "{}", String::from_utf8_lossy(&printed.stderr));
+    serde_json::from_slice(&std::fs::read(out).unwrap()).unwrap()
+}
+
 /// On raw scans `cost_aware` drives to a viewpoint planned at the clearance along its roads,
 /// not back along the tree of moves: a route's last leg may keep the clearance inside one
 /// view's region. Before, it had to keep it in the union of the regions, where such a
@@ -500,15 +514,7 @@ fn cost_aware_on_raw_scans_takes_no_long_way_round_for_a_short_hop() {
     std::fs::create_dir_all(&dir).unwrap();
     let out = dir.join("run.json");
     for seed in ["2", "35"] {
-        let mut args = vec!["--seed", seed, "explore", "--env", &map, "--strategy", "cost_aware"];
-        args.extend(["--robot-radius", "0.2", "--range", "20", "--scan-time", "30"]);
-        args.extend(["--speed", "0.5", "--optimum-seconds", "0", "--bounds-seconds", "0"]);
-        args.extend(["--greedy-max-vertices", "0", "--odometry-drift", "0.01"]);
-        args.extend(["--sensor", "lidar:beams=720,max=20,sigma=0.02,dropout=0.01"]);
-        args.extend(["--out", out.to_str().unwrap()]);
-        let printed = stopscan(&args);
-        assert!(printed.status.success(), "{}", String::from_utf8_lossy(&printed.stderr));
-        let r: Value = serde_json::from_slice(&std::fs::read(&out).unwrap()).unwrap();
+        let r = raw_cost_aware_run(&map, seed, &out);
         let xy = |p: &Value| [p[0].as_f64().unwrap(), p[1].as_f64().unwrap()];
         let path: Vec<[f64; 2]> =
             r["robots"][0]["path"].as_array().unwrap().iter().map(xy).collect();
@@ -547,15 +553,7 @@ fn cost_aware_on_raw_scans_scans_no_twice_in_one_place_for_a_window_it_cannot_cl
     assert!(imported.status.success(), "{}", String::from_utf8_lossy(&imported.stderr));
     let out = dir.join("run.json");
     for seed in ["21", "28"] {
-        let mut args = vec!["--seed", seed, "explore", "--env", map, "--strategy", "cost_aware"];
-        args.extend(["--robot-radius", "0.2", "--range", "20", "--scan-time", "30"]);
-        args.extend(["--speed", "0.5", "--optimum-seconds", "0", "--bounds-seconds", "0"]);
-        args.extend(["--greedy-max-vertices", "0", "--odometry-drift", "0.01"]);
-        args.extend(["--sensor", "lidar:beams=720,max=20,sigma=0.02,dropout=0.01"]);
-        args.extend(["--out", out.to_str().unwrap()]);
-        let printed = stopscan(&args);
-        assert!(printed.status.success(), "{}", String::from_utf8_lossy(&printed.stderr));
-        let r: Value = serde_json::from_slice(&std::fs::read(&out).unwrap()).unwrap();
+        let r = raw_cost_aware_run(map, seed, &out);
         // Where the scans were truly taken.
         let truth: Vec<[f64; 2]> = r["raw_scans"]["stops"]
             .as_array()

@@ -34,8 +34,8 @@
 //!   the floor, the nearest one won, often where the robot had just scanned (raw scans:
 //!   consecutive scans within 0.15 m of each other 21 → 9 over 120 runs, runs beyond 1.25 ×
 //!   the exact run's scans 27 → 24; seeds 41 to 60, 9 → 4 and 15 → 13; `bench floors` and
-//!   the 16 other offices as they were, to 2 s). The trip is then driven to its end and the scan taken: no goal is
-//!   switched mid-trip.
+//!   the 16 other offices as they were, to 2 s). The trip is then driven to its end and the
+//!   scan taken: no goal is switched mid-trip.
 //! - **Routes.** For a robot with a footprint, the shortest way through what was seen: the
 //!   raster's safe cells (every cell within `k` free, `k · res` at least the clearance; the
 //!   cell is fitted so that a whole number of cells spans it, about 10 cm at 20 m) are
