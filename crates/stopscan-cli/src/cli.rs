@@ -500,6 +500,19 @@ pub(crate) struct ExploreArgs {
         requires = "sensor"
     )]
     pub(crate) odometry_drift: f64,
+    /// With --sensor lidar: relays. When the scan where a trip ends is predicted not to be
+    /// placed by ICP along some direction (the far end of a featureless corridor, or of a hall
+    /// seen from one side), and odometry may be off there by more than M metres (one standard
+    /// deviation), the robot stops on the way where a scan can be placed, and scans to place
+    /// itself. Relays count as scans; the strategy is not told of them. 0 never relays
+    #[arg(
+        long,
+        value_name = "M",
+        allow_negative_numbers = true,
+        default_value_t = stopscan::sim::lidar::RELAY,
+        requires = "sensor"
+    )]
+    pub(crate) relay: f64,
     /// Stop the run after N scans, done or not: a run stopped before the strategy is done is
     /// recorded with the reason (exit code 2), its record written as for any run cut short
     /// [default: no limit but the simulator's, 20,000 scans from raw scans, a million steps].

@@ -69,6 +69,7 @@ fn options(a: &ExploreArgs, g: &Global) -> anyhow::Result<ExploreOptions> {
         simplify: a.simplify,
         lidar: a.sensor,
         odometry_drift: a.odometry_drift,
+        relay: a.relay,
         max_scans: a.max_scans.map(|n| n as u64),
     })
 }
@@ -274,7 +275,7 @@ fn summary(w: &mut dyn Write, o: &RunRecord) -> std::io::Result<()> {
     // From raw scans: how far the believed poses were from the truth at the stops (coverage
     // above is measured where the scans were truly taken).
     if let Some(raw) = &o.raw_scans {
-        let rows: [(&str, String); 5] = [
+        let rows: [(&str, String); 6] = [
             ("position error at a stop, max (m)", num(Some(raw.max_position_error), 3)),
             ("position error at a stop, mean (m)", num(Some(raw.mean_position_error), 3)),
             ("heading error at a stop, max (rad)", num(Some(raw.max_heading_error), 4)),
@@ -283,6 +284,7 @@ fn summary(w: &mut dyn Write, o: &RunRecord) -> std::io::Result<()> {
                 format!("{}; {}", raw.icp_fallbacks, raw.icp_degenerate),
             ),
             ("scan matches tied into the pose graph", raw.graph_links.to_string()),
+            ("relays: scans on the way to place the robot", raw.relays.to_string()),
         ];
         for (k, v) in rows {
             t.row(vec![k.into(), v]);

@@ -179,6 +179,15 @@ pub struct RawScanInfo {
     /// stops.
     #[serde(default)]
     pub graph_links: usize,
+    /// The relay rule: a trip whose end is predicted not to be placed by ICP, with odometry
+    /// off by more than this there (one standard deviation, metres), gets a scan on the way
+    /// to place the robot; 0 when off ([`LidarSetup::relay`](crate::sim::lidar::LidarSetup::relay)).
+    #[serde(default)]
+    pub relay: f64,
+    /// Scans taken on the way to place the robot (relays), included in the run's scans and
+    /// their time; the strategy was not told of them.
+    #[serde(default)]
+    pub relays: usize,
     /// Beams in all scans, and what cleaning did to them.
     pub cleaning: crate::sensing::ingest::Cleaning,
     /// Every stop, in order.
@@ -226,6 +235,8 @@ impl RawScanInfo {
                 .filter(|s| s.alignment.is_some_and(|a| a.degenerate.is_some()))
                 .count(),
             graph_links: stops.iter().map(|s| s.links).sum(),
+            relay: setup.relay,
+            relays: stops.iter().filter(|s| s.relay).count(),
             cleaning,
             stops: stops.clone(),
         }

@@ -422,6 +422,9 @@ fn malformed_messages_get_errors_that_name_the_field() {
         (json!({"protocol": "stopscan/1", "seq": 0, "type": "start", "pose": {"x": 0, "y": 0, "theta": 0}, "cost": {"scan_time": -1, "speed": 1}}).to_string(), Some("cost"), "scan_time"),
         (json!({"protocol": "stopscan/1", "seq": 0, "type": "start", "pose": {"x": 0, "y": 0, "theta": 0}, "robot": {"radius": -0.2}}).to_string(), Some("robot.radius"), "radius"),
         (json!({"protocol": "stopscan/1", "seq": 0, "type": "start", "pose": {"x": 0, "y": 0, "theta": 0}, "family": "corner"}).to_string(), Some("corner"), "distance"),
+        (json!({"protocol": "stopscan/1", "seq": 0, "type": "start", "pose": {"x": 0, "y": 0, "theta": 0}, "relay": -0.1}).to_string(), Some("relay"), "finite number >= 0"),
+        (json!({"protocol": "stopscan/1", "seq": 0, "type": "start", "pose": {"x": 0, "y": 0, "theta": 0}, "relay": "on"}).to_string(), Some("relay"), "invalid type"),
+        (json!({"protocol": "stopscan/1", "seq": 0, "type": "start", "pose": {"x": 0, "y": 0, "theta": 0}, "family": "corner", "corner": {"distance": 2}, "relay": 0.05}).to_string(), Some("relay"), "polygon"),
         (json!({"seq": 0, "type": "arrived", "pose": {"x": 0, "y": 0, "theta": 0}}).to_string(), Some("type"), "expected \"start\""),
         (json!({"seq": 3, "type": "arrived", "pose": {"x": 0, "y": 0, "theta": 0}}).to_string(), Some("seq"), "expected 0"),
     ];

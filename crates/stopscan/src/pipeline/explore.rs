@@ -69,6 +69,9 @@ pub struct ExploreOptions {
     pub lidar: Option<crate::world::lidar::Lidar>,
     /// Odometry's drift with [`ExploreOptions::lidar`]: position error per metre driven.
     pub odometry_drift: f64,
+    /// With [`ExploreOptions::lidar`]: the relay rule's threshold
+    /// ([`LidarSetup::relay`], metres; 0 never relays).
+    pub relay: f64,
     /// ROS maps: the boundary simplification tolerance in metres
     /// ([`crate::io::ros_map::RosMapOptions::simplify`]; `None`: the loader's default, 1.5
     /// cells). Other formats are read as they are.
@@ -99,6 +102,7 @@ impl Default for ExploreOptions {
             simplify: None,
             lidar: None,
             odometry_drift: 0.0,
+            relay: crate::sim::lidar::RELAY,
             max_scans: None,
         }
     }
@@ -205,6 +209,7 @@ impl ExploreOptions {
         let Some(l) = self.lidar else { return (setup.clone(), None) };
         let mut s = LidarSetup::new(l, self.odometry_drift, self.seed);
         s.ingest = s.ingest.bridging(setup.sensor.min_window);
+        s.relay = self.relay;
         (raw_scan_planning(setup, l.sigma), Some(s))
     }
 
@@ -263,6 +268,14 @@ impl ExploreOptions {
                 "odometry_drift",
                 "be a share of the distance driven, in [0, 0.5]",
                 &Num(self.odometry_drift),
+            )
+            .into());
+        }
+        if !(self.relay.is_finite() && self.relay >= 0.0) {
+            return Err(InvalidParameter::new(
+                "relay",
+                "be a finite number of metres >= 0",
+                &Num(self.relay),
             )
             .into());
         }
@@ -662,11 +675,12 @@ fn pictures(
     let regions: Vec<_> = run.scans.iter().map(|s| s.region.clone()).collect();
     let cspace: Option<Vec<Vec<Vec<Point>>>> =
         world.reach().map(|r| vec![r.domain().rings().to_vec()]);
+    let relays: Option<Vec<bool>> = raw.map(|r| r.stops.iter().map(|s| s.relay).collect());
     let svg = crate::render::exploration_svg(
         &env.domain,
         &regions,
         &run.path,
-        crate::render::SceneExtras { cspace: cspace.as_deref() },
+        crate::render::SceneExtras { cspace: cspace.as_deref(), relays: relays.as_deref() },
     );
     let replay = crate::render::PolygonReplay {
         domain: env.domain.clone(),

@@ -204,6 +204,9 @@ pub struct SceneExtras<'a> {
     /// and then its holes (either orientation). Drawn faintly over the tint and beneath the
     /// path, and named in the legend, when given.
     pub cspace: Option<&'a [Vec<Vec<Point>>]>,
+    /// Which scans were relays (taken on the way to place the robot, from raw scans), in the
+    /// order of the regions: drawn as diamonds, and named in the legend, when any was.
+    pub relays: Option<&'a [bool]>,
 }
 
 /// A legend entry's swatch.
@@ -216,6 +219,8 @@ enum Swatch {
     Start,
     /// A scan marker, in the ramp's middle colour.
     Marker,
+    /// A relay's marker (a diamond), in the ramp's middle colour.
+    Relay,
     /// The order ramp from 1 to the number given, labelled at both ends.
     Ramp(usize),
 }
@@ -320,6 +325,15 @@ impl Entry {
                     Px(MARKER_STROKE)
                 );
             }
+            Swatch::Relay => {
+                let _ = writeln!(
+                    out,
+                    r##"<path d="{}" fill="{}" stroke="#000" stroke-width="{}"/>"##,
+                    diamond(x + sw / 2.0, y),
+                    ramp(0.5),
+                    Px(MARKER_STROKE)
+                );
+            }
             Swatch::Ramp(n) => {
                 let bar = x + (text_em("1") + legend_em::GAP) * em;
                 let last = n.to_string();
@@ -353,7 +367,13 @@ fn start_side() -> f64 {
 }
 
 /// The legend's entries, in the order drawn.
-fn legend_entries(scans: usize, numbered: usize, path: usize, cspace: bool) -> Vec<Entry> {
+fn legend_entries(
+    scans: usize,
+    numbered: usize,
+    path: usize,
+    cspace: bool,
+    relays: usize,
+) -> Vec<Entry> {
     let mut e = vec![
         Entry::new(Swatch::Fill(FREE_COLOUR.into(), 1.0, Some((WALL_COLOUR, 1.0))), "free space"),
         Entry::new(Swatch::Fill(OBSTACLE_COLOUR.into(), 1.0, None), "obstacles and outside"),
@@ -385,6 +405,9 @@ fn legend_entries(scans: usize, numbered: usize, path: usize, cspace: bool) -> V
             Swatch::Marker,
             format!("scan points, numbered where there is room ({numbered} of {scans})"),
         ));
+    }
+    if relays > 0 {
+        e.push(Entry::new(Swatch::Relay, format!("relays: scans to place the robot ({relays})")));
     }
     if scans > 1 {
         e.push(Entry::new(Swatch::Ramp(scans), "scan order"));
@@ -452,7 +475,9 @@ pub fn exploration_svg(
 
     // The legend is laid out for the widest count it can show, before the numbers are placed
     // (they stay out of it all the same).
-    let widest = legend_entries(n, n, path.len(), extras.cspace.is_some());
+    let relay = |k: usize| extras.relays.is_some_and(|r| r.get(k).copied().unwrap_or(false));
+    let relays = (0..n).filter(|&k| relay(k)).count();
+    let widest = legend_entries(n, n, path.len(), extras.cspace.is_some(), relays);
     let max_width = widest
         .iter()
         .map(|e| e.width_em() * LEGEND_FONT)
@@ -462,14 +487,14 @@ pub fn exploration_svg(
     reserved.extend(start);
     let space = LabelSpace { area: map, font: LABEL_FONT, clearance: LABEL_CLEARANCE };
     let placed = labels::place_labels(&markers, &reserved, space);
-    let entries = legend_entries(n, placed.len(), path.len(), extras.cspace.is_some());
+    let entries = legend_entries(n, placed.len(), path.len(), extras.cspace.is_some(), relays);
     let (at, legend_box) = legend_layout(&entries, max_width, MARGIN, map.bottom + MARGIN);
     let (cw, ch) = (map.right.max(legend_box.right + MARGIN), legend_box.bottom + MARGIN);
 
     let mut out = String::new();
     header(&mut out, cw, ch);
     draw_map(&mut out, &f, domain, regions, extras.cspace, path);
-    draw_scans(&mut out, &markers, start, &placed);
+    draw_scans(&mut out, &markers, &relay, start, &placed);
     let _ = writeln!(out, r##"<g class="legend" font-size="{}" fill="#000">"##, Px(LEGEND_FONT));
     let _ = writeln!(
         out,
@@ -582,19 +607,46 @@ fn draw_map(
     }
 }
 
-/// The scan markers in their order's colours, the start's square and the numbers placed.
-fn draw_scans(out: &mut String, markers: &[Marker], start: Option<PixelBox>, placed: &[Placed]) {
+/// A diamond marker's path around `(x, y)`, as wide as a scan marker's circle.
+fn diamond(x: f64, y: f64) -> String {
+    let r = MARKER_RADIUS * std::f64::consts::SQRT_2;
+    format!(
+        "M{},{}L{},{}L{},{}L{},{}Z",
+        Px(x),
+        Px(y - r),
+        Px(x + r),
+        Px(y),
+        Px(x),
+        Px(y + r),
+        Px(x - r),
+        Px(y)
+    )
+}
+
+/// The scan markers in their order's colours (a relay's a diamond, the others circles), the
+/// start's square and the numbers placed.
+fn draw_scans(
+    out: &mut String,
+    markers: &[Marker],
+    relay: &dyn Fn(usize) -> bool,
+    start: Option<PixelBox>,
+    placed: &[Placed],
+) {
     let _ =
         writeln!(out, r##"<g class="scans" stroke="#000" stroke-width="{}">"##, Px(MARKER_STROKE));
     for (k, m) in markers.iter().enumerate() {
-        let _ = writeln!(
-            out,
-            r#"<circle cx="{}" cy="{}" r="{}" fill="{}"/>"#,
-            Px(m.x),
-            Px(m.y),
-            Px(MARKER_RADIUS),
-            order_colour(k, markers.len())
-        );
+        let colour = order_colour(k, markers.len());
+        let _ = if relay(k) {
+            writeln!(out, r#"<path class="relay" d="{}" fill="{colour}"/>"#, diamond(m.x, m.y))
+        } else {
+            writeln!(
+                out,
+                r#"<circle cx="{}" cy="{}" r="{}" fill="{colour}"/>"#,
+                Px(m.x),
+                Px(m.y),
+                Px(MARKER_RADIUS)
+            )
+        };
     }
     out.push_str("</g>\n");
     if let Some(b) = start {

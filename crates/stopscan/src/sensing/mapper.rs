@@ -47,6 +47,19 @@ pub const MIN_PLAUSIBLE_SHIFT: f64 = MAP_SAME_WALL;
 /// The smallest turn ICP may not make, radians (3°).
 pub const MIN_PLAUSIBLE_TURN: f64 = 0.052;
 
+/// The relay rule's default threshold, metres: a third of the 0.1 m a stop may be off
+/// ([`Mapper::relay`]).
+pub const RELAY: f64 = 0.033;
+
+/// At most this many relays before the strategy's next scan.
+pub const MAX_RELAYS: usize = 2;
+
+/// Relays are looked for along the trip every this many metres, back from its end...
+pub const RELAY_STEP: f64 = 0.5;
+
+/// ...and no nearer than this to where the robot stands, metres.
+pub const RELAY_GAP: f64 = 1.0;
+
 /// How scans are read and aligned, and how far odometry drifts.
 #[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
 pub struct MapperParams {
@@ -158,6 +171,9 @@ pub struct Mapper {
     /// Metres driven since the last stop whose alignment was kept (or the first stop): the
     /// stops between kept odometry's pose, so its drift since then is still in the estimate.
     unaligned: f64,
+    /// How unsure the graph was of the last stop's position when it was read
+    /// ([`Reading::placement`]).
+    placement: f64,
 }
 
 impl Mapper {
@@ -169,7 +185,74 @@ impl Mapper {
             kept: Vec::new(),
             graph: PoseGraph::new(),
             unaligned: 0.0,
+            placement: 0.0,
         }
+    }
+
+    /// How far off the pose of a scan taken after driving `metres` more on odometry alone
+    /// may be before it is aligned, one standard deviation, metres: the last stop's
+    /// placement and odometry's reach since the last stop it aligned.
+    pub fn unsure_after(&self, metres: f64) -> f64 {
+        let (_, reach) = odometry_spread(&self.params, self.unaligned + metres);
+        self.placement.hypot(reach)
+    }
+
+    /// A relay: where on the first leg of `trip` (map frame: where the robot stands, the
+    /// move it is about to make, then the waypoints after it; the last is where the next scan
+    /// is to be taken) the robot should stop and scan to place itself, if anywhere. It
+    /// should when the scan where the trip ends is predicted not to be placed
+    /// ([`Mapper::would_place`], with the lidar's `beams` and `range`), odometry may be off
+    /// there by more than `threshold` (one standard deviation, [`Mapper::unsure_after`]
+    /// `since_scan` metres already driven and the trip), and a scan is predicted to be placed
+    /// somewhere on the way: the place nearest the trip's end, every [`RELAY_STEP`] back
+    /// along it and at least [`RELAY_GAP`] from where the robot stands. That place is
+    /// returned when it lies on the first leg or at its end; one on a later leg is found
+    /// when the robot stands at the start of that leg.
+    pub fn relay(
+        &self,
+        trip: &[Point],
+        since_scan: f64,
+        beams: usize,
+        range: f64,
+        threshold: f64,
+    ) -> Option<Point> {
+        let (&end, legs) = (trip.last()?, trip.windows(2));
+        let lengths: Vec<f64> =
+            legs.map(|w| (w[1][0] - w[0][0]).hypot(w[1][1] - w[0][1])).collect();
+        let length: f64 = lengths.iter().sum();
+        if threshold.is_nan()
+            || threshold <= 0.0
+            || self.unsure_after(since_scan + length) <= threshold
+            || self.would_place(end, beams, range)
+        {
+            return None;
+        }
+        // Back from the end, leg by leg.
+        let mut left = length;
+        for (k, w) in trip.windows(2).enumerate().rev() {
+            let l = lengths[k];
+            let mut t = l;
+            while t > 0.0 {
+                t = (t - RELAY_STEP).max(0.0);
+                if left - l + t < RELAY_GAP {
+                    return None;
+                }
+                let p =
+                    [w[0][0] + (w[1][0] - w[0][0]) * t / l, w[0][1] + (w[1][1] - w[0][1]) * t / l];
+                if self.would_place(p, beams, range) {
+                    return (k == 0 || (k == 1 && t == 0.0)).then_some(p);
+                }
+            }
+            left -= l;
+        }
+        None
+    }
+
+    /// Whether a scan from `at` (map frame) is predicted to be placed by ICP
+    /// ([`icp::predict`] with the lidar's `beams` and `range`).
+    pub fn would_place(&self, at: Point, beams: usize, range: f64) -> bool {
+        !self.map.is_empty()
+            && icp::predict(&self.map, at, beams, range, &self.params.icp).places(&self.params.icp)
     }
 
     /// The parameters.
@@ -264,6 +347,7 @@ impl Mapper {
         self.graph.optimize(GRAPH_STEPS);
         let estimate = self.graph.poses()[k];
         let placement = self.graph.covariance(k).map_or(0.0, |c| largest_spread(&c));
+        self.placement = placement;
         self.kept.push(Kept {
             walls: local.walls,
             bridges: local.bridges,

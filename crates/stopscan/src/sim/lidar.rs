@@ -50,13 +50,25 @@ pub struct LidarSetup {
     pub icp: IcpParams,
     /// The seed of the lidar's noise and the odometry's drift.
     pub seed: u64,
+    /// Relays ([`Mapper::relay`]): when a scan where a trip ends is predicted not to be
+    /// placed by ICP along some direction, and odometry over the trip may be off by more
+    /// than this (one standard deviation, metres), the robot stops on the way where a scan
+    /// can be placed, and scans to place itself. 0 never relays.
+    #[serde(default = "default_relay")]
+    pub relay: f64,
 }
+
+fn default_relay() -> f64 {
+    RELAY
+}
+
+pub use crate::sensing::mapper::{MAX_RELAYS, RELAY};
 
 impl LidarSetup {
     /// A setup for `lidar` and `drift`, reading scans with the lidar's noise, seeded.
     pub fn new(lidar: Lidar, drift: f64, seed: u64) -> Self {
         let m = MapperParams::for_sensor(lidar.sigma, drift, HEADING_DRIFT * drift);
-        Self { lidar, drift, ingest: m.ingest, icp: m.icp, seed }
+        Self { lidar, drift, ingest: m.ingest, icp: m.icp, seed, relay: RELAY }
     }
 
     /// How the robot's scans are read and aligned.
@@ -96,6 +108,10 @@ pub struct Stop {
     pub placement_sd: f64,
     /// What cleaning did to the scan.
     pub cleaning: Cleaning,
+    /// A scan taken on the way to place the robot ([`LidarSetup::relay`]), not asked for by
+    /// the strategy, which is not told of it.
+    #[serde(default, skip_serializing_if = "std::ops::Not::not")]
+    pub relay: bool,
 }
 
 /// A run from raw scans.
@@ -301,6 +317,18 @@ pub fn run(
         match strategy.act(&feedback) {
             Action::Done => break Ok(()),
             Action::MoveTo { to } => {
+                if let Some(r) = robot.relay_on_the_way(to, &strategy.ahead()) {
+                    let (at, metres, failed) = robot.drive_to(r);
+                    if observer.on_move(0, &at, metres).is_break() {
+                        robot.out.truth.interrupted = true;
+                        break Ok(());
+                    }
+                    if failed.is_none()
+                        && let Err(e) = robot.relay(&name, cost)
+                    {
+                        break Err(e);
+                    }
+                }
                 let (at, metres, failed) = robot.drive_to(to);
                 if observer.on_move(0, &at, metres).is_break() {
                     robot.out.truth.interrupted = true;
@@ -312,6 +340,7 @@ pub fn run(
                 };
             }
             Action::Scan => {
+                robot.relays = 0;
                 let observation = match robot.scan(&name, cost) {
                     Ok(o) => o,
                     Err(e) => break Err(e),
@@ -349,6 +378,9 @@ struct Robot<'a> {
     /// Whether a move failed since the last scan: a scan where one already stood then places
     /// the robot again (its belief drifted on the way there), and counts as progress.
     failed_since_scan: bool,
+    /// Relays since the strategy's last scan.
+    relays: usize,
+    setup: &'a LidarSetup,
     out: LidarRun,
 }
 
@@ -362,6 +394,8 @@ impl<'a> Robot<'a> {
             tally,
             since_scan: 0.0,
             failed_since_scan: false,
+            relays: 0,
+            setup,
             out: LidarRun {
                 truth: PolygonRun {
                     tally,
@@ -420,6 +454,15 @@ impl<'a> Robot<'a> {
         if self.tally.scans >= MAX_SCANS {
             return Err(SimError::TooLong(name.into(), MAX_SCANS));
         }
+        let reading = self.read(cost, false);
+        self.out.observations.push(reading.observation.clone());
+        Ok(reading.observation)
+    }
+
+    /// Scans from the true pose, reads the scan at the belief and aligns it (the robot takes
+    /// the aligned pose as its belief), and records the stop.
+    fn read(&mut self, cost: &CostModel, relay: bool) -> crate::sensing::mapper::Reading {
+        let odometry = self.sim.odometry();
         let scan = self.sim.scan();
         let reading = self
             .mapper
@@ -444,12 +487,35 @@ impl<'a> Robot<'a> {
             links: reading.links,
             placement_sd: reading.placement,
             cleaning: reading.cleaning,
+            relay,
         });
         if belief.at() != *self.out.believed_path.last().expect("starts with the start") {
             self.out.believed_path.push(belief.at());
         }
-        self.out.observations.push(reading.observation.clone());
         self.out.laser.push(scan);
-        Ok(reading.observation)
+        reading
+    }
+
+    /// A scan on the way, to place the robot ([`LidarSetup::relay`]): the strategy is not
+    /// told of it.
+    fn relay(&mut self, name: &str, cost: &CostModel) -> Result<(), PolygonSimError> {
+        if self.tally.scans >= MAX_SCANS {
+            return Err(SimError::TooLong(name.into(), MAX_SCANS));
+        }
+        self.relays += 1;
+        self.read(cost, true);
+        Ok(())
+    }
+
+    /// Where on the move to `to` the robot should stop for a relay, if anywhere
+    /// ([`Mapper::relay`], with the strategy's waypoints after the move).
+    fn relay_on_the_way(&self, to: Point, ahead: &[Point]) -> Option<Point> {
+        if self.setup.relay <= 0.0 || self.relays >= MAX_RELAYS || self.out.stops.is_empty() {
+            return None;
+        }
+        let mut trip = vec![self.sim.odometry().at(), to];
+        trip.extend_from_slice(ahead);
+        let lidar = &self.setup.lidar;
+        self.mapper.relay(&trip, self.since_scan, lidar.beams, lidar.range_max, self.setup.relay)
     }
 }

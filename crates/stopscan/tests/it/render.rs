@@ -212,7 +212,7 @@ mod exploration_picture {
             vec![square([5.0, 5.0], 4.0), square([5.0, 5.0], 1.0)],
             vec![square([15.0, 5.0], 4.0)],
         ];
-        let with = SceneExtras { cspace: Some(&cspace) };
+        let with = SceneExtras { cspace: Some(&cspace), ..SceneExtras::default() };
         let svg = exploration_svg(&domain, &regions, &path, with);
         assert_eq!(svg.matches("class=\"cspace\"").count(), 1);
         let layer = &svg[svg.find("class=\"cspace\"").unwrap()..];
@@ -222,6 +222,26 @@ mod exploration_picture {
         assert!(read(&svg).legend_words.iter().any(|w| w == "configuration space"));
         let none = exploration_svg(&domain, &regions, &path, SceneExtras::default());
         assert!(!none.contains("cspace") && !none.contains("configuration space"));
+    }
+
+    /// Relays are drawn as diamonds, one per relay and at its scan's place, and named in the
+    /// legend with their count; without relays there is neither.
+    #[test]
+    fn relays_are_drawn_as_diamonds() {
+        let domain = rectangle(20.0, 10.0, vec![]);
+        let (regions, path) = scene(&[[2.0, 2.0], [10.0, 5.0], [18.0, 8.0]]);
+        let relays = [false, true, false];
+        let with = SceneExtras { relays: Some(&relays), ..SceneExtras::default() };
+        let svg = exploration_svg(&domain, &regions, &path, with);
+        assert_eq!(svg.matches("class=\"relay\"").count(), 1);
+        let none = exploration_svg(&domain, &regions, &path, SceneExtras::default());
+        let circles = |s: &str| s.matches("<circle").count();
+        assert_eq!(circles(&svg) + 1, circles(&none));
+        assert!(read(&svg).legend_words.iter().any(|w| w.contains("relays") && w.contains("(1)")));
+        assert!(!none.contains("relay"));
+        let all_false = [false; 3];
+        let quiet = SceneExtras { relays: Some(&all_false), ..SceneExtras::default() };
+        assert_eq!(exploration_svg(&domain, &regions, &path, quiet), none);
     }
 
     /// A small scene with room everywhere numbers every scan, the one at the start included;

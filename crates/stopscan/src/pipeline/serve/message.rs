@@ -200,6 +200,10 @@ pub struct StartIn {
     /// Odometry's drift per metre driven (polygon).
     #[serde(default)]
     pub odometry_drift: Option<f64>,
+    /// The relay rule's threshold, metres (polygon; 0 never relays):
+    /// [`Mapper::relay`](crate::sensing::mapper::Mapper::relay).
+    #[serde(default)]
+    pub relay: Option<f64>,
     /// The corner search's set-up (corner).
     #[serde(default)]
     pub corner: Option<CornerIn>,

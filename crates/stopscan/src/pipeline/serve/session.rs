@@ -17,7 +17,7 @@ use crate::protocol::laser::{InvalidScan, Pose};
 use crate::protocol::polygon::{Footprint, RobotSetup, Sensor};
 use crate::protocol::{Action, CostModel, Feedback, RunTotals, Tally};
 use crate::sensing::ingest::IngestError;
-use crate::sensing::mapper::{Mapper, MapperParams};
+use crate::sensing::mapper::{MAX_RELAYS, Mapper, MapperParams, RELAY};
 use crate::sim::lidar::HEADING_DRIFT;
 use crate::strategy::corner::registry::{self, BuildOptions};
 use crate::strategy::corner::{CornerFeedback, CornerStrategy, StopListStrategy};
@@ -122,6 +122,17 @@ struct PolygonRun {
     /// Odometry far from its origin (a georeferenced frame, say) would otherwise scale the
     /// strategies' tolerances (made relative to the coordinates' magnitude) far beyond a map's.
     local: Frame,
+    /// Relays ([`Mapper::relay`]): the threshold, metres (0 never).
+    relay: f64,
+    /// The last scan's beams and `range_max`: the lidar a relay's prediction casts.
+    lidar: Option<(usize, f64)>,
+    /// Relays since the strategy's last scan.
+    relays: usize,
+    /// While the robot drives to a relay or scans there: the strategy's move it stopped on
+    /// the way of, to be driven after the relay's scan.
+    resume: Option<Point>,
+    /// The scan asked for is a relay's.
+    relaying: bool,
 }
 
 struct CornerRun {
@@ -263,6 +274,7 @@ impl Session {
                 ReplyBody::Scan
             }
             Action::MoveTo { to } => {
+                let to = self.one().relay_for(to).unwrap_or(to);
                 let (goal, map_goal, stop) = self.one().goal(to);
                 self.expect = Expect::Move;
                 ReplyBody::Goal { goal, map_goal, stop }
@@ -357,6 +369,7 @@ impl Run {
             ("robot", s.robot.is_some(), Family::Polygon),
             ("sensor", s.sensor.is_some(), Family::Polygon),
             ("odometry_drift", s.odometry_drift.is_some(), Family::Polygon),
+            ("relay", s.relay.is_some(), Family::Polygon),
             ("corner", s.corner.is_some(), Family::Corner),
             ("roi", s.roi.is_some(), Family::Roi),
         ];
@@ -420,6 +433,11 @@ impl One {
         match self {
             Self::Polygon(r) => {
                 r.odometry.moved(pose);
+                if r.resume.is_some() {
+                    // At a relay: its scan, of which the strategy is not told.
+                    r.relaying = true;
+                    return Action::Scan;
+                }
                 r.strategy.act(&Feedback::Arrived)
             }
             Self::Corner(r) => {
@@ -438,6 +456,8 @@ impl One {
         match self {
             Self::Polygon(r) => {
                 r.odometry.moved(f.pose);
+                // A relay on the way that could not be reached: the strategy's move failed.
+                r.resume = None;
                 let at = r.map_pose(f.pose).at();
                 Some(r.strategy.act(&Feedback::MoveFailed { at, reason: f.reason }))
             }
@@ -453,6 +473,21 @@ impl One {
             Self::Polygon(r) => r.scanned(s),
             Self::Corner(r) => r.scanned(s).map(|a| (a, None)),
         }
+    }
+
+    /// Where the robot should stop for a relay on the strategy's move to `to`, if anywhere
+    /// ([`Mapper::relay`]); the move is driven after the relay's scan.
+    fn relay_for(&mut self, to: Point) -> Option<Point> {
+        let Self::Polygon(r) = self else { return None };
+        let (beams, range) = r.lidar?;
+        if r.relays >= MAX_RELAYS {
+            return None;
+        }
+        let mut trip = vec![r.map_pose(r.odometry.last).at(), to];
+        trip.extend(r.strategy.ahead());
+        let at = r.mapper.relay(&trip, r.odometry.since_scan, beams, range, r.relay)?;
+        r.resume = Some(to);
+        Some(at)
     }
 
     /// The goal for a strategy's place: in the odometry frame, in the map frame, and the
@@ -559,6 +594,7 @@ impl PolygonRun {
         }
         let mut params = MapperParams::for_sensor(sigma, drift, HEADING_DRIFT * drift);
         params.ingest = params.ingest.bridging(min_window);
+        let relay = non_negative("relay", s.relay.unwrap_or(RELAY))?;
         Ok(Self {
             strategy,
             cost,
@@ -566,6 +602,11 @@ impl PolygonRun {
             odometry: Odometry::new(s.pose),
             correction: Pose::default(),
             local: Frame::near(s.pose.at()),
+            relay,
+            lidar: None,
+            relays: 0,
+            resume: None,
+            relaying: false,
         })
     }
 
@@ -605,7 +646,15 @@ impl PolygonRun {
         let odometry = Pose::new(self.local.to_local(s.pose.at()), s.pose.theta);
         self.correction = reading.estimate.compose(&odometry.inverse());
         let estimate = self.to_input(reading.estimate);
-        let action = self.strategy.act(&Feedback::Scanned(reading.observation));
+        self.lidar = Some((scan.ranges.len(), scan.range_max));
+        let action = if std::mem::take(&mut self.relaying) {
+            // A relay's scan places the robot; the strategy's move goes on.
+            self.relays += 1;
+            Action::MoveTo { to: self.resume.take().expect("a relay resumes a move") }
+        } else {
+            self.relays = 0;
+            self.strategy.act(&Feedback::Scanned(reading.observation))
+        };
         let alignment = reading.alignment.map(|mut a| {
             (a.guess, a.pose) = (self.to_input(a.guess), self.to_input(a.pose));
             a

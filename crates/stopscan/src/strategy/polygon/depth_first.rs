@@ -130,6 +130,10 @@ impl PolygonStrategy for DepthFirst {
         known::act(self, feedback, |s| &mut s.known, Self::plan)
     }
 
+    fn ahead(&self) -> Vec<Point> {
+        self.known.ahead()
+    }
+
     fn skipped(&self) -> super::Skipped {
         self.known.skipped
     }

@@ -454,6 +454,10 @@ impl PolygonStrategy for ExploreLite {
         "explore_lite"
     }
 
+    fn ahead(&self) -> Vec<Point> {
+        self.trip.ahead()
+    }
+
     fn act(&mut self, feedback: &PolygonFeedback) -> Action<Point> {
         match feedback {
             PolygonFeedback::Start { .. } => Action::Scan,

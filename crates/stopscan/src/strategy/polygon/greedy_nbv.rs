@@ -81,6 +81,10 @@ impl PolygonStrategy for GreedyNbv {
         known::act(self, feedback, |s| &mut s.known, Self::plan)
     }
 
+    fn ahead(&self) -> Vec<Point> {
+        self.known.ahead()
+    }
+
     fn skipped(&self) -> super::Skipped {
         self.known.skipped
     }

@@ -1394,6 +1394,12 @@ impl Known {
         self.trip.next_move()
     }
 
+    /// [`PolygonStrategy::ahead`](super::PolygonStrategy::ahead): the trip's waypoints
+    /// after the one issued last.
+    pub(super) fn ahead(&self) -> Vec<Point> {
+        self.trip.ahead()
+    }
+
     /// A move failed: the target the trip was for is dropped (its window part counted in
     /// [`Skipped::move_failed`]) and the robot drives back to the latest viewpoint the trip
     /// passed ([`Trip::failed_back_to`]), to plan again from there.

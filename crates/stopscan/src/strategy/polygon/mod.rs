@@ -125,6 +125,13 @@ pub trait PolygonStrategy {
     fn skipped(&self) -> Skipped {
         Skipped::default()
     }
+    /// After a [`Action::MoveTo`]: the waypoints the strategy means to drive after it, in
+    /// order, the last being where it will scan; none when it will scan at the move's end
+    /// or does not know yet. A driver that must place the robot on the way (a scan for
+    /// localisation only: [`sim::lidar`](crate::sim::lidar)) reads where the trip ends.
+    fn ahead(&self) -> Vec<Point> {
+        Vec::new()
+    }
 }
 
 #[cfg(test)]

@@ -103,6 +103,13 @@ impl Trip {
         self.issued.filter(|_| !self.returning)
     }
 
+    /// The waypoints still to drive after the one the robot was sent to last, in order (the
+    /// last is where the trip's scan is to be taken); none while driving back after a failed
+    /// move (that way ends in planning again, not in a scan).
+    pub(super) fn ahead(&self) -> Vec<Point> {
+        if self.returning { Vec::new() } else { self.route.iter().rev().copied().collect() }
+    }
+
     /// The waypoints reached since the trip started, in order.
     pub(super) fn driven(&self) -> &[Point] {
         &self.driven
@@ -173,12 +180,18 @@ mod tests {
         let mut t = Trip::default();
         t.begin([0.0, 0.0]);
         t.set_route(vec![[3.0, 0.0], [2.0, 0.0], [1.0, 0.0]]);
+        // What lies ahead of each move, in order, ends where the trip scans.
+        assert_eq!(t.ahead(), vec![[1.0, 0.0], [2.0, 0.0], [3.0, 0.0]]);
         assert_eq!(t.next_move(), Action::MoveTo { to: [1.0, 0.0] });
+        assert_eq!(t.ahead(), vec![[2.0, 0.0], [3.0, 0.0]]);
         assert_eq!(t.arrived(), Next::Act(Action::MoveTo { to: [2.0, 0.0] }));
         assert_eq!(t.arrived(), Next::Act(Action::MoveTo { to: [3.0, 0.0] }));
+        assert!(t.ahead().is_empty());
         // Blocked between (2, 0) and (3, 0): back to (2, 0), (1, 0), then the start.
         assert_eq!(t.failed(), Action::MoveTo { to: [2.0, 0.0] });
         assert!(t.returning);
+        // The way back ends in planning again, not in a scan.
+        assert!(t.ahead().is_empty());
         assert_eq!(t.arrived(), Next::Act(Action::MoveTo { to: [1.0, 0.0] }));
         // The way back fails once: the same waypoint again.
         assert_eq!(t.failed(), Action::MoveTo { to: [1.0, 0.0] });
