@@ -51,6 +51,12 @@ struct ExploreArgs {
     /// Odometry's drift per metre driven.
     #[arg(long, default_value_t = 0.01)]
     odometry_drift: f64,
+    /// Relays: when the scan where a trip ends is predicted not to be placed by scan matching
+    /// and odometry may be off there by more than M metres (one standard deviation), the
+    /// robot is first sent to a place on the way where a scan can be placed, and scans there.
+    /// 0 never relays.
+    #[arg(long, value_name = "M", default_value_t = stopscan::sensing::mapper::RELAY)]
+    relay: f64,
     /// Only publish the next scan pose (the robot is driven by other means) instead of sending
     /// nav2 goals.
     #[arg(long)]
@@ -124,6 +130,7 @@ fn run(cli: Cli) -> anyhow::Result<()> {
                 "robot": {"radius": a.robot_radius},
                 "sensor": {"sigma": a.sigma},
                 "odometry_drift": a.odometry_drift,
+                "relay": a.relay,
             });
             let o = ExplorerOptions {
                 domain: cli.domain,
