@@ -743,8 +743,13 @@ impl Prediction {
     /// prediction cannot see: walls not mapped yet hide some of the walls predicted, and
     /// noise and dropouts thin the returns.
     pub fn places(&self, params: &IcpParams) -> bool {
-        self.pairs as f64 >= PREDICTION_MARGIN * params.min_pairs as f64
-            && self.weakest > PREDICTION_MARGIN * params.degenerate_ratio
+        self.places_by(params, PREDICTION_MARGIN)
+    }
+
+    /// [`places`](Self::places) with another margin.
+    pub fn places_by(&self, params: &IcpParams, margin: f64) -> bool {
+        self.pairs as f64 >= margin * params.min_pairs as f64
+            && self.weakest > margin * params.degenerate_ratio
     }
 }
 
