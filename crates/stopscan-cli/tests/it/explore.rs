@@ -557,6 +557,8 @@ fn raw_scans_relay_on_a_trip_to_where_a_scan_cannot_be_placed() {
 /// viewpoint could stand a rounding error too near a wall; on depot these seeds then drove
 /// 30 m for a hop of 2.2 m (seed 2) and 62 m for 2.4 m (seed 35). Measured from the record's
 /// path: between two scans the robot drives at most 2.5 times the straight line plus 20 m.
+/// Without relays, which change the runs: these are the runs the defect was seen in (with
+/// relays, seed 35 now falls back to the tree of moves elsewhere: see the README).
 #[test]
 fn cost_aware_on_raw_scans_takes_no_long_way_round_for_a_short_hop() {
     let map = common::fixture("ros-maps/depot.yaml");
@@ -564,7 +566,7 @@ fn cost_aware_on_raw_scans_takes_no_long_way_round_for_a_short_hop() {
     std::fs::create_dir_all(&dir).unwrap();
     let out = dir.join("run.json");
     for seed in ["2", "35"] {
-        let r = raw_cost_aware_run(&map, seed, &[], &out);
+        let r = raw_cost_aware_run(&map, seed, &["--relay", "0"], &out);
         let xy = |p: &Value| [p[0].as_f64().unwrap(), p[1].as_f64().unwrap()];
         let path: Vec<[f64; 2]> =
             r["robots"][0]["path"].as_array().unwrap().iter().map(xy).collect();
