@@ -453,10 +453,7 @@ fn raw_scans_from_a_simulated_lidar() {
 /// them in the record and the table, and still sees the map; with an exact sensor it does not.
 #[test]
 fn cost_aware_closes_slivers_in_front_of_walls_seen_and_says_so() {
-    let map = common::fixture("ros-maps/depot.yaml");
-    let dir = temp("walled-pockets");
-    std::fs::create_dir_all(&dir).unwrap();
-    let out = dir.join("run.json");
+    let (map, out) = depot_and_record("walled-pockets");
     // `cost_aware` on depot with the flags `extra`: the table and the record. (Seed 2 closes
     // six such parts; seed 5 closed some until ICP paired returns only with walls that run as
     // their surfaces do, which placed its stops better.)
@@ -487,6 +484,13 @@ fn cost_aware_closes_slivers_in_front_of_walls_seen_and_says_so() {
     assert!(r["sensor"].get("windows_into_walled_pockets").is_none(), "{}", r["sensor"]);
 }
 
+/// The depot fixture, and where a run's record goes in a fresh directory named `name`.
+fn depot_and_record(name: &str) -> (String, std::path::PathBuf) {
+    let dir = temp(name);
+    std::fs::create_dir_all(&dir).unwrap();
+    (common::fixture("ros-maps/depot.yaml"), dir.join("run.json"))
+}
+
 /// `cost_aware` on `map` from raw scans, with `bench floors`' robot and the lidar and
 /// drift: the run record, written to `out`.
 fn raw_cost_aware_run(map: &str, seed: &str, extra: &[&str], out: &std::path::Path) -> Value {
@@ -510,10 +514,7 @@ fn raw_cost_aware_run(map: &str, seed: &str, extra: &[&str], out: &std::path::Pa
 /// among the scans, flags its stop, and lists it among the scans taken.
 #[test]
 fn raw_scans_relay_on_a_trip_to_where_a_scan_cannot_be_placed() {
-    let map = common::fixture("ros-maps/depot.yaml");
-    let dir = temp("relays");
-    std::fs::create_dir_all(&dir).unwrap();
-    let out = dir.join("run.json");
+    let (map, out) = depot_and_record("relays");
     for seed in ["3", "7"] {
         let on = raw_cost_aware_run(&map, seed, &[], &out);
         let off = raw_cost_aware_run(&map, seed, &["--relay", "0"], &out);
@@ -561,10 +562,7 @@ fn raw_scans_relay_on_a_trip_to_where_a_scan_cannot_be_placed() {
 /// relays, seed 35 now falls back to the tree of moves elsewhere: see the README).
 #[test]
 fn cost_aware_on_raw_scans_takes_no_long_way_round_for_a_short_hop() {
-    let map = common::fixture("ros-maps/depot.yaml");
-    let dir = temp("short-hops");
-    std::fs::create_dir_all(&dir).unwrap();
-    let out = dir.join("run.json");
+    let (map, out) = depot_and_record("short-hops");
     for seed in ["2", "35"] {
         let r = raw_cost_aware_run(&map, seed, &["--relay", "0"], &out);
         let xy = |p: &Value| [p[0].as_f64().unwrap(), p[1].as_f64().unwrap()];

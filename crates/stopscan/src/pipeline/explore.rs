@@ -271,14 +271,7 @@ impl ExploreOptions {
             )
             .into());
         }
-        if !(self.relay.is_finite() && self.relay >= 0.0) {
-            return Err(InvalidParameter::new(
-                "relay",
-                "be a finite number of metres >= 0",
-                &Num(self.relay),
-            )
-            .into());
-        }
+        nonneg("relay", self.relay)?;
         if self.odometry_drift > 0.0 && self.lidar.is_none() {
             return Err(InvalidParameter::new(
                 "odometry_drift",

@@ -787,8 +787,9 @@ pub fn predict(
     let lever = lever(&points);
     let (h, _, pairs, _) =
         normal_equations(&points, &normals, &pose, map, params.gate_end, params, lever);
-    let (_, weak) = solve(h, [0.0; 3], params.degenerate_ratio);
-    let (vals, _) = jacobi_eigen(h);
+    let eigen = jacobi_eigen(h);
+    let vals = eigen.0;
+    let (_, weak) = solve_eigen(eigen, [0.0; 3], params.degenerate_ratio);
     let top = vals.iter().copied().fold(0.0, f64::max);
     let weakest =
         if top > 0.0 { vals.iter().copied().fold(f64::INFINITY, f64::min) / top } else { 0.0 };
@@ -919,7 +920,15 @@ fn for_each_pair(
 /// largest, and an unconstrained direction mostly a shift, if there is one, as
 /// `(dx, dy, dθ·lever)` (unit).
 fn solve(h: [[f64; 3]; 3], g: [f64; 3], ratio: f64) -> ([f64; 3], Option<[f64; 3]>) {
-    let (vals, vecs) = jacobi_eigen(h);
+    solve_eigen(jacobi_eigen(h), g, ratio)
+}
+
+/// [`solve`] on the matrix's eigen-decomposition ([`jacobi_eigen`]).
+fn solve_eigen(
+    (vals, vecs): ([f64; 3], [[f64; 3]; 3]),
+    g: [f64; 3],
+    ratio: f64,
+) -> ([f64; 3], Option<[f64; 3]>) {
     let top = vals.iter().copied().fold(0.0, f64::max);
     let mut step = [0.0; 3];
     let mut weak = None;
@@ -1444,6 +1453,22 @@ mod tests {
         assert_eq!(predict(&room, [3.0, -2.0], 720, 20.0, &params).pairs, 0);
     }
 
+    /// A wall as proptest draws it: a start, a run, and whether it is solid (or a bridge).
+    type RandomWall = ((f64, f64), (f64, f64), bool);
+
+    /// A wall map of proptest's walls, and the walls.
+    fn random_map(walls: Vec<RandomWall>) -> (WallMap, Vec<([Point; 2], bool)>) {
+        let walls: Vec<([Point; 2], bool)> = walls
+            .into_iter()
+            .map(|((x, y), (dx, dy), solid)| ([[x, y], [x + dx, y + dy]], solid))
+            .collect();
+        let mut map = WallMap::new();
+        for &(w, solid) in &walls {
+            if solid { map.extend(&[w]) } else { map.extend_bridges(&[w]) }
+        }
+        (map, walls)
+    }
+
     proptest::proptest! {
         /// The grid walk finds exactly the crossings of every wall against every beam.
         #[test]
@@ -1456,14 +1481,7 @@ mod tests {
             pts in proptest::collection::vec((-15.0..15.0f64, -15.0..15.0f64), 1..60),
             margin in 0.0..0.3f64,
         ) {
-            let walls: Vec<([Point; 2], bool)> = walls
-                .into_iter()
-                .map(|((x, y), (dx, dy), solid)| ([[x, y], [x + dx, y + dy]], solid))
-                .collect();
-            let mut map = WallMap::new();
-            for &(w, solid) in &walls {
-                if solid { map.extend(&[w]) } else { map.extend_bridges(&[w]) }
-            }
+            let (map, walls) = random_map(walls);
             let eye = [eye.0, eye.1];
             let pts: Vec<Point> = pts.into_iter().map(|(x, y)| [x, y]).collect();
             proptest::prop_assert_eq!(
@@ -1483,12 +1501,8 @@ mod tests {
             eye in (-12.0..12.0f64, -12.0..12.0f64),
             to in (-25.0..25.0f64, -25.0..25.0f64),
         ) {
-            let mut map = WallMap::new();
-            let mut solid = Vec::new();
-            for ((x, y), (dx, dy), s) in walls {
-                let w = [[x, y], [x + dx, y + dy]];
-                if s { map.extend(&[w]); solid.push(w) } else { map.extend_bridges(&[w]) }
-            }
+            let (map, walls) = random_map(walls);
+            let solid: Vec<[Point; 2]> = walls.iter().filter(|w| w.1).map(|w| w.0).collect();
             let (eye, to) = ([eye.0, eye.1], [to.0, to.1]);
             // From the definition: the beam's parameter where it meets each wall.
             let brute = solid

@@ -451,17 +451,22 @@ impl<'a> Robot<'a> {
                 scans: self.tally.scans,
             });
         }
-        if self.tally.scans >= MAX_SCANS {
-            return Err(SimError::TooLong(name.into(), MAX_SCANS));
-        }
-        let reading = self.read(cost, false);
+        let reading = self.read(name, cost, false)?;
         self.out.observations.push(reading.observation.clone());
         Ok(reading.observation)
     }
 
     /// Scans from the true pose, reads the scan at the belief and aligns it (the robot takes
-    /// the aligned pose as its belief), and records the stop.
-    fn read(&mut self, cost: &CostModel, relay: bool) -> crate::sensing::mapper::Reading {
+    /// the aligned pose as its belief), and records the stop; refused beyond [`MAX_SCANS`].
+    fn read(
+        &mut self,
+        name: &str,
+        cost: &CostModel,
+        relay: bool,
+    ) -> Result<crate::sensing::mapper::Reading, PolygonSimError> {
+        if self.tally.scans >= MAX_SCANS {
+            return Err(SimError::TooLong(name.into(), MAX_SCANS));
+        }
         let odometry = self.sim.odometry();
         let scan = self.sim.scan();
         let reading = self
@@ -493,18 +498,14 @@ impl<'a> Robot<'a> {
             self.out.believed_path.push(belief.at());
         }
         self.out.laser.push(scan);
-        reading
+        Ok(reading)
     }
 
     /// A scan on the way, to place the robot ([`LidarSetup::relay`]): the strategy is not
     /// told of it.
     fn relay(&mut self, name: &str, cost: &CostModel) -> Result<(), PolygonSimError> {
-        if self.tally.scans >= MAX_SCANS {
-            return Err(SimError::TooLong(name.into(), MAX_SCANS));
-        }
         self.relays += 1;
-        self.read(cost, true);
-        Ok(())
+        self.read(name, cost, true).map(drop)
     }
 
     /// Where on the move to `to` the robot should stop for a relay, if anywhere

@@ -131,8 +131,6 @@ struct PolygonRun {
     /// While the robot drives to a relay or scans there: the strategy's move it stopped on
     /// the way of, to be driven after the relay's scan.
     resume: Option<Point>,
-    /// The scan asked for is a relay's.
-    relaying: bool,
 }
 
 struct CornerRun {
@@ -435,7 +433,6 @@ impl One {
                 r.odometry.moved(pose);
                 if r.resume.is_some() {
                     // At a relay: its scan, of which the strategy is not told.
-                    r.relaying = true;
                     return Action::Scan;
                 }
                 r.strategy.act(&Feedback::Arrived)
@@ -606,7 +603,6 @@ impl PolygonRun {
             lidar: None,
             relays: 0,
             resume: None,
-            relaying: false,
         })
     }
 
@@ -647,10 +643,10 @@ impl PolygonRun {
         self.correction = reading.estimate.compose(&odometry.inverse());
         let estimate = self.to_input(reading.estimate);
         self.lidar = Some((scan.ranges.len(), scan.range_max));
-        let action = if std::mem::take(&mut self.relaying) {
+        let action = if let Some(to) = self.resume.take() {
             // A relay's scan places the robot; the strategy's move goes on.
             self.relays += 1;
-            Action::MoveTo { to: self.resume.take().expect("a relay resumes a move") }
+            Action::MoveTo { to }
         } else {
             self.relays = 0;
             self.strategy.act(&Feedback::Scanned(reading.observation))
