@@ -606,7 +606,8 @@ mod runs {
 impl Raster {
     /// The area of unknown space seen from `z` along the rays whose angles `rays` marks
     /// (`rays[k]`: the ray at `k · 2π / rays.len()`), each out to `range` and through at most
-    /// `depth` of unknown space (a ray stops at an occupied cell: a wall seen before). Each
+    /// `depth` of unknown space (a ray stops at an occupied cell, a wall seen before, and at
+    /// an assumed wall when `stops` says so; otherwise an assumed wall is unknown space). Each
     /// unknown cell a ray crosses counts the sector of the ray's angular width between where the
     /// ray enters and leaves it, so the sum estimates an area whatever the ray spacing. The
     /// cell `z` stands in is not a wall to its own rays.
@@ -617,6 +618,7 @@ impl Raster {
         range: f64,
         depth: f64,
         limit: Option<[Point; 2]>,
+        stops: Stops,
     ) -> f64 {
         let limit = limit.map(|[lo, hi]| [self.cell_of(lo), self.cell_of(hi)]);
         let n = rays.len();
@@ -629,14 +631,14 @@ impl Raster {
         for (k, _) in rays.iter().enumerate().filter(|(_, on)| **on) {
             let theta = k as f64 * dtheta;
             let (dx, dy) = (theta.cos(), theta.sin());
-            area += dtheta * self.unknown_along(z, start, [dx, dy], (range, depth), limit);
+            area += dtheta * self.unknown_along(z, start, [dx, dy], (range, depth), limit, stops);
         }
         area
     }
 
     /// `∫ r dr` over the unknown stretches of the ray from `z` (in cell `start`) along the unit
     /// vector `d`, out to `range` and through at most `depth` of unknown space, stopping at the
-    /// first occupied cell after the start's (a grid walk, Amanatides and Woo).
+    /// first cell after the start's that `stops` stops at (a grid walk, Amanatides and Woo).
     fn unknown_along(
         &self,
         z: Point,
@@ -644,6 +646,7 @@ impl Raster {
         d: [f64; 2],
         (range, depth): (f64, f64),
         limit: Option<[[i64; 2]; 2]>,
+        stops: Stops,
     ) -> f64 {
         let res = self.res;
         let mut cell = start;
@@ -665,7 +668,11 @@ impl Raster {
         let (mut t, mut unknown, mut sum) = (0.0f64, 0.0f64, 0.0f64);
         loop {
             let state = self.state(cell);
-            if matches!(state, OCCUPIED | ASSUMED) && cell != start {
+            let stop = match stops {
+                Stops::WallsAndAssumed => matches!(state, OCCUPIED | ASSUMED),
+                Stops::Walls => state == OCCUPIED,
+            };
+            if stop && cell != start {
                 return sum;
             }
             if let Some([lo, hi]) = limit
@@ -675,7 +682,8 @@ impl Raster {
             }
             let axis = usize::from(t_max[1] < t_max[0]);
             let t_out = t_max[axis].min(range);
-            if state == UNKNOWN {
+            // Assumed walls are unknown space where they do not stop the rays.
+            if state == UNKNOWN || (state == ASSUMED && stops == Stops::Walls) {
                 let t_end = t_out.min(t + (depth - unknown));
                 sum += 0.5 * (t_end * t_end - t * t);
                 unknown += t_end - t;
@@ -691,6 +699,15 @@ impl Raster {
             t_max[axis] += t_delta[axis];
         }
     }
+}
+
+/// Which cells stop a ray of [`Raster::unknown_area_seen`].
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub(super) enum Stops {
+    /// Walls seen and walls assumed ([`Raster::assume_wall`]): the predicted gain.
+    WallsAndAssumed,
+    /// Walls seen only: whether anything unknown lies behind a window at all.
+    Walls,
 }
 
 impl Raster {
@@ -786,13 +803,15 @@ mod tests {
     fn an_unknown_plane_shows_a_disc_out_to_the_range_or_the_depth() {
         let r = Raster::new(0.1);
         let rays = vec![true; 720];
-        let disc = r.unknown_area_seen([0.03, 0.07], &rays, 3.0, 10.0, None);
+        let disc =
+            r.unknown_area_seen([0.03, 0.07], &rays, 3.0, 10.0, None, Stops::WallsAndAssumed);
         assert!((disc - std::f64::consts::PI * 9.0).abs() < 1e-9, "{disc}");
-        let shallow = r.unknown_area_seen([0.03, 0.07], &rays, 3.0, 2.0, None);
+        let shallow =
+            r.unknown_area_seen([0.03, 0.07], &rays, 3.0, 2.0, None, Stops::WallsAndAssumed);
         assert!((shallow - std::f64::consts::PI * 4.0).abs() < 1e-9, "{shallow}");
         // Half the rays: half the disc.
         let half: Vec<bool> = (0..720).map(|k| k < 360).collect();
-        let h = r.unknown_area_seen([0.0, 0.0], &half, 3.0, 10.0, None);
+        let h = r.unknown_area_seen([0.0, 0.0], &half, 3.0, 10.0, None, Stops::WallsAndAssumed);
         assert!((h - std::f64::consts::PI * 4.5).abs() < 1e-9, "{h}");
     }
 
@@ -805,7 +824,7 @@ mod tests {
         // Beyond the window, in its wedge, within the range: |y| ≤ x, x ≥ 1, r ≤ 3.
         let wedge = |p: Point| p[0] >= 1.0 && p[1].abs() <= p[0] && p[0].hypot(p[1]) <= 3.0;
         let want = area_where(0.005, [0.0, -3.0], [3.0, 3.0], wedge);
-        let got = r.unknown_area_seen([0.0, 0.0], &rays, 3.0, 10.0, None);
+        let got = r.unknown_area_seen([0.0, 0.0], &rays, 3.0, 10.0, None, Stops::WallsAndAssumed);
         // Cells a wall touches stop the rays that pass through them: near the window's ends,
         // within a cell of its corners (√2 from the viewpoint), about `res` radians on each
         // side, at most `res · R²` of area. The cells the window runs through are unknown and
@@ -817,19 +836,77 @@ mod tests {
         r.assume_wall([2.0, -3.0], [2.0, 3.0]);
         let near = |p: Point| wedge(p) && p[0] <= 2.0;
         let want = area_where(0.005, [0.0, -3.0], [3.0, 3.0], near);
-        let got = r.unknown_area_seen([0.0, 0.0], &rays, 3.0, 10.0, None);
+        let got = r.unknown_area_seen([0.0, 0.0], &rays, 3.0, 10.0, None, Stops::WallsAndAssumed);
         assert!(close(got, want), "{got} against {want}");
+        // Not when only walls seen stop them.
+        let all = r.unknown_area_seen([0.0, 0.0], &rays, 3.0, 10.0, None, Stops::Walls);
+        let want_all = area_where(0.005, [0.0, -3.0], [3.0, 3.0], wedge);
+        assert!(close(all, want_all), "{all} against {want_all}");
         // So does the limit box, and the depth of unknown space a ray may cross.
-        let boxed =
-            r.unknown_area_seen([0.0, 0.0], &rays, 3.0, 10.0, Some([[-1.5, -1.5], [1.5, 1.5]]));
+        let boxed = r.unknown_area_seen(
+            [0.0, 0.0],
+            &rays,
+            3.0,
+            10.0,
+            Some([[-1.5, -1.5], [1.5, 1.5]]),
+            Stops::WallsAndAssumed,
+        );
         // The box ends at the cell holding x = 1.5.
         let want = area_where(0.005, [0.0, -3.0], [3.0, 3.0], |p| near(p) && p[0] <= 1.55);
         assert!(close(boxed, want), "{boxed} against {want}");
-        let shallow = r.unknown_area_seen([0.0, 0.0], &rays, 3.0, 0.2, None);
+        let shallow =
+            r.unknown_area_seen([0.0, 0.0], &rays, 3.0, 0.2, None, Stops::WallsAndAssumed);
         assert!(shallow < got && shallow > 0.0);
         // A ray from inside the room that meets only walls sees nothing.
         let left: Vec<bool> = (0..720).map(|k| (270..450).contains(&k)).collect();
-        assert_eq!(r.unknown_area_seen([0.0, 0.0], &left, 3.0, 10.0, None), 0.0);
+        assert_eq!(
+            r.unknown_area_seen([0.0, 0.0], &left, 3.0, 10.0, None, Stops::WallsAndAssumed),
+            0.0
+        );
+    }
+
+    #[test]
+    fn a_sliver_in_front_of_a_wall_seen_opens_onto_nothing() {
+        // Free cells in columns 0 to 4, a wall seen in column 5 from row 2 to row 9, unknown
+        // beyond: the rays from (0.25, 0.55) through the segment x = 0.5, y from 0.3 to 0.8
+        // (the region's edge, a cell in front of the wall) meet the wall before anything
+        // unknown, assumed walls or not.
+        let wall = |i: usize, j: usize| i == 5 && (2..=9).contains(&j);
+        let cells: Vec<u8> = (0..144)
+            .map(|k| match (k % 12, k / 12) {
+                (i, j) if wall(i, j) => OCCUPIED,
+                (i, _) if i < 5 => FREE,
+                _ => UNKNOWN,
+            })
+            .collect();
+        let r = raster_of(&cells);
+        let (z, gap) = ([0.25, 0.55], [[0.5, 0.3], [0.5, 0.8]]);
+        let rays = rays_through_gap(z, gap);
+        for stops in [Stops::Walls, Stops::WallsAndAssumed] {
+            assert_eq!(r.unknown_area_seen(z, &rays, 3.0, 10.0, None, stops), 0.0);
+        }
+        // Through a gap in the wall (rows 5 and 6 unknown), the space beyond shows.
+        let holed: Vec<u8> = cells
+            .iter()
+            .enumerate()
+            .map(|(k, &st)| if k % 12 == 5 && (5..=6).contains(&(k / 12)) { UNKNOWN } else { st })
+            .collect();
+        let seen = raster_of(&holed).unknown_area_seen(z, &rays, 3.0, 10.0, None, Stops::Walls);
+        assert!(seen > 0.05, "{seen}");
+    }
+
+    /// The rays of 720 that pass through the segment `gap` seen from `z`, from the
+    /// definition: those whose direction lies between the directions of its ends.
+    fn rays_through_gap(z: Point, gap: [Point; 2]) -> Vec<bool> {
+        let angle = |p: Point| (p[1] - z[1]).atan2(p[0] - z[0]);
+        let (a, b) = (angle(gap[0]).min(angle(gap[1])), angle(gap[0]).max(angle(gap[1])));
+        (0..720)
+            .map(|k| {
+                let t = std::f64::consts::TAU * f64::from(k) / 720.0;
+                let t = if t > std::f64::consts::PI { t - std::f64::consts::TAU } else { t };
+                (a..=b).contains(&t)
+            })
+            .collect()
     }
 
     /// A raster of `states` (row `j` of the grid at cells `(i, j)`, `0 ≤ i, j < 12`), cells
