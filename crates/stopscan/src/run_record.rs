@@ -97,7 +97,7 @@ pub struct SensorInfo {
     pub windows_looked_at_from_their_viewpoint: Option<usize>,
     /// Window parts closed without a visit because they open onto a pocket enclosed by walls
     /// seen and space seen, smaller than a quarter of the pocket limit, or onto a wall seen
-    /// right behind them (`cost_aware` on raw scans only; absent: none).
+    /// right behind them (raw scans only, every window strategy; absent: none).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub windows_into_walled_pockets: Option<usize>,
     /// Scans taken where the robot was stuck, its moves and the way back having failed: each

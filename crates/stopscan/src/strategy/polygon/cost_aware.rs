@@ -60,28 +60,15 @@
 //!   (windows the sensor rule excludes, or that no viewpoint with the footprint's clearance
 //!   can be planned for, are counted in the run record). Every candidate sees its part
 //!   across the region, or stands beside it.
-//! - **Pockets behind walls seen** (raw scans). A part that opens onto a pocket of the raster
-//!   (unknown cells, four-connected, enclosed by cells seen free and walls seen) smaller than
-//!   a quarter of the sensor rule's pocket limit is closed without a visit, and counted
-//!   (`windows_into_walled_pockets`). The rule's own pockets are holes in the union of the
-//!   views' regions, which walls do not bound; on raw scans, noise leaves window parts a few
-//!   centimetres in front of a wall another scan saw, each of which cost a scan. Over 120
-//!   raw-scan runs (office, depot, warehouse, seeds 1 to 40) the mission time fell 4.5% and
-//!   the scans 3.5%, and no run's coverage fell below 99%. Runs with an exact sensor are
-//!   unchanged.
-//! - **Slivers in front of walls seen** (raw scans). A part is closed the same way when the
-//!   rays from its own viewpoint through it meet walls seen before [`NOTHING_SEEN`] of
-//!   unknown space (assumed walls do not stop them here): the part lies within a cell of a
-//!   wall another scan saw, and opens onto nothing. Such parts opened into the unknown
-//!   inside of a shelf or a pillar, too large for a pocket, and cost a scan each at the end
-//!   of a run: on the warehouse (seed 2) the last nine scans each saw under 0.1 m² that no
-//!   earlier scan saw, on the ground truth. Over the same 120 runs the scans fell 3,866 →
-//!   3,560 and the mission time 8.4%, runs beyond 1.25 × their exact run's scans 38 → 17,
-//!   the lowest coverage 99.23% → 99.26%; seeds 41 to 60 (60 runs), 1,922 → 1,796 scans,
-//!   18 → 6 runs beyond 1.25 ×, lowest 99.23% → 99.32%. Unlike the rules under "Tried and
-//!   not kept" in the README (every ray meeting a wall within 0.25 to 0.5 m of unknown
-//!   space, or under half the pocket limit of it), nothing unknown may lie between the part
-//!   and the wall: a slot between shelves has unknown cells in it.
+//! - **Pockets behind walls seen, and slivers in front of them** (raw scans). The window
+//!   bookkeeping every window strategy shares closes a part that opens onto a small pocket
+//!   that walls seen enclose, or onto a wall seen right behind it ([`super::known`]'s
+//!   `close_if_walled`). This strategy had it first: over 120 raw-scan runs (office, depot,
+//!   warehouse, seeds 1 to 40) the pockets cut the mission time 4.5% and the scans 3.5%, and
+//!   the slivers the scans 3,866 → 3,560 and the mission time 8.4% more (runs beyond 1.25 ×
+//!   their exact run's scans 38 → 17; on the warehouse, seed 2, the last nine scans had each
+//!   seen under 0.1 m² that no earlier scan saw), no run's coverage below 99%. Runs with an
+//!   exact sensor are unchanged.
 //!
 //! # Measured
 //! `bench floors` (the five shared maps and 12 offices, one run with the other strategies):
@@ -197,7 +184,7 @@
 use serde::{Deserialize, Serialize};
 
 use super::known::{self, Known, Target};
-use super::raster::{Entry, Raster, STEP, Stops};
+use super::raster::{CELL, DEPTH, Entry, Raster, STEP, Stops, rays_through};
 use super::{PolygonFeedback, PolygonStrategy};
 use crate::algorithm::visibility::BoundaryPiece;
 use crate::kernel::Point;
@@ -217,26 +204,11 @@ const STEP_BACK: [f64; 2] = [2.0, 4.0];
 /// 8 s).
 const HORIZON: f64 = 5.0;
 
-/// Rays per revolution of the predicted gain.
-const RAYS: usize = 720;
-
-/// The lengths of the predicted gain, as fractions of the length scale (the range, or
-/// without one how far the first scan reached): the raster's cell (10 cm at 20 m), how far a
-/// ray counts unknown space (8 m: 12,460 s at 2 m and 12,405 s at 20 m, before the assumed
-/// walls), how far beyond the box of what was seen (0.5 m), and how far a wall is assumed to
-/// run on out of sight (2 m; 1 m and 3 m did no better).
-const CELL: f64 = 1.0 / 200.0;
-const DEPTH: f64 = 0.4;
-/// On raw scans, the share of the sensor rule's pocket limit below which a window part that
-/// opens onto a pocket of the raster is closed without a visit. Walls seen bound such a
-/// pocket, as they do not bound the rule's own pockets (holes in the union of the views'
-/// regions): the sliver between a window and the wall another scan saw a few centimetres
-/// behind it, which cost a scan each. At the whole limit the space behind a desk (1–2 m²) was
-/// closed too: on the built-in office, seed 21, coverage fell from 99.62% to 98.62%. Not with
-/// an exact sensor, which leaves no such slivers: there the pockets it closed were real
-/// spaces (on willow-full at 10 cm, 20 parts, 302 scans against 324 and 98.81% seen against
-/// 98.90%).
-const WALLED_POCKET_SHARE: f64 = 0.25;
+// The lengths of the predicted gain, as fractions of the length scale (the range, or
+// without one how far the first scan reached): the raster's cell ([`CELL`], 10 cm at 20 m),
+// how far a ray counts unknown space ([`DEPTH`], 8 m: 12,460 s at 2 m and 12,405 s at 20 m,
+// before the assumed walls), how far beyond the box of what was seen (0.5 m), and how far a
+// wall is assumed to run on out of sight (2 m; 1 m and 3 m did no better).
 const MARGIN: f64 = 0.025;
 const ASSUMED_WALL: f64 = 0.1;
 
@@ -320,13 +292,7 @@ impl CostAware {
         }
         let footprint = &self.setup.footprint;
         if self.seen.raster.is_none() {
-            let scale = self
-                .setup
-                .sensor
-                .range
-                .filter(|r| r.is_finite())
-                .unwrap_or_else(|| self.known.reach_of(0))
-                .max(f64::MIN_POSITIVE);
+            let scale = self.known.raster_scale();
             self.seen.scale = scale;
             let mut res = scale * CELL;
             if !footprint.is_point() {
@@ -369,26 +335,6 @@ impl CostAware {
         self.seen.views = n;
     }
 
-    /// The first open part of window `k` of view `v` worth a trip: a part that opens onto a
-    /// pocket of the raster (unknown cells enclosed by walls seen and space seen) smaller
-    /// than `limit` square metres is closed as it comes ([`WALLED_POCKET_SHARE`]).
-    fn worth_a_trip(&mut self, v: usize, k: usize, limit: f64) -> Option<Target> {
-        loop {
-            let (t, _) = self.known.window_target(v, k)?;
-            let [p, q] = self.known.gap_of(&t);
-            let raster = self.seen.raster.as_ref();
-            if limit <= 0.0 {
-                return Some(t);
-            }
-            let walled = raster.and_then(|r| r.pocket_behind(p, q, limit)).is_some()
-                || self.opens_onto_walls(&t);
-            if !walled {
-                return Some(t);
-            }
-            self.known.close_as_walled_pocket(&t);
-        }
-    }
-
     /// The predicted new area of a scan at `z`: unknown space seen along rays through the open
     /// parts `gaps` within `range` ([`Raster::unknown_area_seen`]).
     fn gain(&self, z: Point, gaps: &[[Point; 2]], range: f64) -> f64 {
@@ -400,16 +346,6 @@ impl CostAware {
         let rays = rays_through(z, gaps, range);
         let depth = DEPTH * self.seen.scale;
         raster.unknown_area_seen(z, &rays, range, depth, Some(limit), Stops::WallsAndAssumed)
-    }
-
-    /// Whether the part `t` stands for opens onto walls seen: rays from its own viewpoint
-    /// through it meet walls seen before any unknown space (less than [`NOTHING_SEEN`] of it).
-    fn opens_onto_walls(&self, t: &Target) -> bool {
-        let Some(raster) = &self.seen.raster else { return false };
-        let range = self.setup.sensor.range.unwrap_or(2.0 * self.seen.scale);
-        let rays = rays_through(t.at, &[self.known.gap_of(t)], range);
-        let depth = DEPTH * self.seen.scale;
-        raster.unknown_area_seen(t.at, &rays, range, depth, None, Stops::Walls) < NOTHING_SEEN
     }
 
     /// What the cost model charges for the trip from view `cur` to target `t` and its scan:
@@ -552,13 +488,12 @@ impl CostAware {
         // Every open window part, by view.
         let mut open: Vec<(usize, Vec<Target>)> = Vec::new();
         self.sync_raster();
-        let limit = WALLED_POCKET_SHARE * self.known.pocket_limit_on_raw_scans();
         for v in 0..self.known.views.len() {
             if self.known.views[v].explored {
                 continue;
             }
             let targets: Vec<Target> = (0..self.known.views[v].windows_len())
-                .filter_map(|k| self.worth_a_trip(v, k, limit))
+                .filter_map(|k| self.known.window_target(v, k).map(|t| t.0))
                 .collect();
             if targets.is_empty() {
                 self.known.views[v].explored = true;
@@ -634,30 +569,6 @@ impl CostAware {
     }
 }
 
-/// Which of [`RAYS`] rays from `z` pass through the segments `gaps` (those with an end
-/// within `range`): `rays[k]` for the ray at angle `k · 2π / RAYS`.
-fn rays_through(z: Point, gaps: &[[Point; 2]], range: f64) -> Vec<bool> {
-    use std::f64::consts::{PI, TAU};
-    let mut rays = vec![false; RAYS];
-    let dtheta = TAU / RAYS as f64;
-    let d = |p: Point| (p[0] - z[0]).hypot(p[1] - z[1]);
-    for g in gaps.iter().filter(|g| d(g[0]).min(d(g[1])) <= range) {
-        let a0 = (g[0][1] - z[1]).atan2(g[0][0] - z[0]);
-        let a1 = (g[1][1] - z[1]).atan2(g[1][0] - z[0]);
-        let mut sweep = a1 - a0;
-        if sweep > PI {
-            sweep -= TAU;
-        } else if sweep < -PI {
-            sweep += TAU;
-        }
-        let (a, sweep) = if sweep < 0.0 { (a1, -sweep) } else { (a0, sweep) };
-        for k in (a / dtheta).ceil() as i64..=((a + sweep) / dtheta).floor() as i64 {
-            rays[k.rem_euclid(RAYS as i64) as usize] = true;
-        }
-    }
-    rays
-}
-
 /// Where the walls beside a region's windows are assumed to run on behind them, for the
 /// predicted gain: the wall piece that a window's far end lies on, extended beyond that end
 /// by `len` (the wall the window's ray met runs on out of sight).
@@ -712,6 +623,7 @@ impl PolygonStrategy for CostAware {
 mod tests {
     use super::*;
     use crate::geometry::EdgeId;
+    use crate::strategy::polygon::raster::RAYS;
 
     #[test]
     fn rays_through_a_gap_are_those_between_its_ends() {

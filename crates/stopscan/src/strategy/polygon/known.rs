@@ -16,6 +16,7 @@ use crate::protocol::polygon::{Footprint, PolygonObservation, RobotSetup, Sensor
 
 use super::PolygonFeedback;
 use super::approach::{Approach, holds};
+use super::raster::{CELL, DEPTH, Raster, Stops, rays_through};
 use super::trip::{Next, Trip};
 
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
@@ -149,6 +150,13 @@ pub enum Placement {
     Far,
 }
 
+/// An occupancy raster of the views, and how many of them it holds.
+#[derive(Debug, Clone, Default, PartialEq)]
+struct WallsSeen {
+    raster: Option<Raster>,
+    views: usize,
+}
+
 /// The views taken so far.
 #[derive(Debug, Clone, Default, PartialEq, Serialize, Deserialize)]
 pub(super) struct Known {
@@ -185,6 +193,10 @@ pub(super) struct Known {
     asked: Vec<Point>,
     /// The window part the next scan is for.
     pending: Option<Target>,
+    /// On raw scans, the occupancy raster of the views ([`Known::walled`]): rebuilt from the
+    /// views after deserialising.
+    #[serde(skip)]
+    walls_seen: WallsSeen,
     /// The trip being driven.
     #[serde(default)]
     trip: Trip,
@@ -282,8 +294,8 @@ pub struct Skipped {
     #[serde(default)]
     pub looked_from: usize,
     /// Window parts that open onto a pocket of unseen space enclosed by walls seen and space
-    /// seen, smaller than a quarter of the sensor rule's pocket limit (`cost_aware` on raw
-    /// scans, on its raster of what was seen).
+    /// seen, smaller than a quarter of the sensor rule's pocket limit, or onto a wall seen
+    /// right behind them (raw scans, on a raster of the views: [`Known::close_if_walled`]).
     #[serde(default)]
     pub walled_pocket: usize,
     /// Scans taken where the robot was stuck: its moves failed, and so did the way back
@@ -781,10 +793,10 @@ impl Known {
                         .map(|(at, via, anchor)| Target { at, via, anchor, ..target.clone() }),
                 };
                 if let Some(t) = planned {
-                    if !self.looked_from(&t) {
-                        return Some((t, open));
+                    if self.looked_from(&t) || self.close_if_walled(&t, [p, q]) {
+                        continue;
                     }
-                    continue;
+                    return Some((t, open));
                 }
                 self.skipped.out_of_reach += 1;
                 self.deferred.push(Deferred { view, window: k, gap, near });
@@ -804,10 +816,10 @@ impl Known {
                 .find(|&z| v.reaches(z));
             if let Some(at) = found {
                 let t = Target { at, ..target };
-                if !self.looked_from(&t) {
-                    return Some((t, open));
+                if self.looked_from(&t) || self.close_if_walled(&t, [p, q]) {
+                    continue;
                 }
-                continue;
+                return Some((t, open));
             }
             // No point beside this part can be reached in a straight line, and a scan where the
             // robot stands would only repeat this view: the part counts as handled, as it would
@@ -1269,9 +1281,52 @@ impl Known {
         self.close(t.view, t.window, t.gap);
     }
 
-    /// Closes the part `t` stands for without a scan: it opens onto a small pocket that a
-    /// strategy found with walls seen as its bounds ([`Skipped::walled_pocket`]).
-    pub(super) fn close_as_walled_pocket(&mut self, t: &Target) {
+    /// On raw scans, closes the part `t` stands for (its ends `p`, `q`) without a scan when
+    /// it opens onto a pocket of the raster of the views (unknown cells, four-connected,
+    /// enclosed by cells seen free and walls seen) smaller than [`WALLED_POCKET_SHARE`] of
+    /// the sensor rule's pocket limit, or onto a wall seen right behind it: the rays from its
+    /// viewpoint through it meet walls seen before [`NOTHING_BEHIND`] of unknown space.
+    /// Returns whether it did ([`Skipped::walled_pocket`]). Noise leaves window parts a few
+    /// centimetres in front of walls other scans saw, each of which cost a scan: the sensor
+    /// rule's own pockets are holes in the union of the views' regions, which walls do not
+    /// bound, and behind a shelf's face lies its unknown inside, too large for a pocket.
+    fn close_if_walled(&mut self, t: &Target, [p, q]: [Point; 2]) -> bool {
+        let limit = WALLED_POCKET_SHARE * self.pocket_limit_on_raw_scans();
+        if limit <= 0.0 {
+            return false;
+        }
+        let scale = self.raster_scale();
+        let n = self.views.len();
+        let raster = self.walls_seen.raster.get_or_insert_with(|| Raster::new(scale * CELL));
+        for v in &self.views[self.walls_seen.views..n] {
+            raster.scale = raster.scale.max(crate::kernel::magnitude(&v.polygon)).max(1.0);
+            raster.add_view(&v.polygon, &v.pieces, v.at);
+        }
+        self.walls_seen.views = n;
+        let rays = rays_through(t.at, &[[p, q]], scale);
+        let behind = DEPTH * scale;
+        let walled = raster.pocket_behind(p, q, limit).is_some()
+            || raster.unknown_area_seen(t.at, &rays, scale, behind, None, Stops::Walls)
+                < NOTHING_BEHIND;
+        if walled {
+            self.close_as_walled_pocket(t);
+        }
+        walled
+    }
+
+    /// The length scale of the rasters of the views: the sensor's range, or without one how
+    /// far the first view reached.
+    pub(super) fn raster_scale(&self) -> f64 {
+        self.sensor
+            .range
+            .filter(|r| r.is_finite())
+            .unwrap_or_else(|| self.reach_of(0))
+            .max(f64::MIN_POSITIVE)
+    }
+
+    /// Closes the part `t` stands for without a scan: it opens onto a small pocket with walls
+    /// seen as its bounds, or onto a wall ([`Skipped::walled_pocket`]).
+    fn close_as_walled_pocket(&mut self, t: &Target) {
         self.skipped.walled_pocket += 1;
         self.handled(t);
     }
@@ -1635,6 +1690,22 @@ fn below_rule(sensor: &Sensor, at: Point, p: Point, q: Point) -> Option<f64> {
 /// A point on a window: the view, the window's index among its windows, and the parameter
 /// along it (0 at `from`, 1 at `to`).
 type WindowAt = (usize, usize, f64);
+
+/// On raw scans, the share of the sensor rule's pocket limit below which a window part that
+/// opens onto a pocket of the raster of the views is closed without a visit
+/// ([`Known::close_if_walled`]). Walls seen bound such a pocket, as they do not bound the
+/// rule's own pockets (holes in the union of the views' regions): the sliver between a window
+/// and the wall another scan saw a few centimetres behind it, which cost a scan each. At the
+/// whole limit the space behind a desk (1–2 m²) was closed too: on the built-in office, seed
+/// 21, coverage fell from 99.62% to 98.62%. Not with an exact sensor, which leaves no such
+/// slivers: there the pockets it closed were real spaces (on willow-full at 10 cm, 20 parts,
+/// 302 scans against 324 and 98.81% seen against 98.90%).
+const WALLED_POCKET_SHARE: f64 = 0.25;
+
+/// Less unknown space than this, square metres, seen through a window part from its own
+/// viewpoint before walls seen stop the rays, is nothing: the part opens onto a wall
+/// ([`Known::close_if_walled`]). About two cells of the raster at 5 m.
+const NOTHING_BEHIND: f64 = 0.01;
 
 /// How far around the viewpoint and the part [`Known::union_point`] searches the union of
 /// the views' regions, in multiples of the clearance.

@@ -701,6 +701,41 @@ impl Raster {
     }
 }
 
+/// The cell of a raster of the views, as a fraction of the length scale (the range, or
+/// without one how far the first view reached): 10 cm at 20 m.
+pub(super) const CELL: f64 = 1.0 / 200.0;
+
+/// How far a ray of [`Raster::unknown_area_seen`] counts unknown space, as a fraction of the
+/// length scale: 8 m at 20 m.
+pub(super) const DEPTH: f64 = 0.4;
+
+/// Rays per revolution of the predicted gain and of [`rays_through`].
+pub(super) const RAYS: usize = 720;
+
+/// Which of [`RAYS`] rays from `z` pass through the segments `gaps` (those with an end
+/// within `range`): `rays[k]` for the ray at angle `k · 2π / RAYS`.
+pub(super) fn rays_through(z: Point, gaps: &[[Point; 2]], range: f64) -> Vec<bool> {
+    use std::f64::consts::{PI, TAU};
+    let mut rays = vec![false; RAYS];
+    let dtheta = TAU / RAYS as f64;
+    let d = |p: Point| (p[0] - z[0]).hypot(p[1] - z[1]);
+    for g in gaps.iter().filter(|g| d(g[0]).min(d(g[1])) <= range) {
+        let a0 = (g[0][1] - z[1]).atan2(g[0][0] - z[0]);
+        let a1 = (g[1][1] - z[1]).atan2(g[1][0] - z[0]);
+        let mut sweep = a1 - a0;
+        if sweep > PI {
+            sweep -= TAU;
+        } else if sweep < -PI {
+            sweep += TAU;
+        }
+        let (a, sweep) = if sweep < 0.0 { (a1, -sweep) } else { (a0, sweep) };
+        for k in (a / dtheta).ceil() as i64..=((a + sweep) / dtheta).floor() as i64 {
+            rays[k.rem_euclid(RAYS as i64) as usize] = true;
+        }
+    }
+    rays
+}
+
 /// Which cells stop a ray of [`Raster::unknown_area_seen`].
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub(super) enum Stops {
