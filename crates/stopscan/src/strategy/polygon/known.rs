@@ -295,7 +295,7 @@ pub struct Skipped {
     pub looked_from: usize,
     /// Window parts that open onto a pocket of unseen space enclosed by walls seen and space
     /// seen, smaller than a quarter of the sensor rule's pocket limit, or onto a wall seen
-    /// right behind them (raw scans, on a raster of the views: [`Known::close_if_walled`]).
+    /// right behind them (raw scans, on a raster of the views).
     #[serde(default)]
     pub walled_pocket: usize,
     /// Scans taken where the robot was stuck: its moves failed, and so did the way back
