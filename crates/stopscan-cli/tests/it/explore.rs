@@ -499,7 +499,12 @@ fn depot_and_record(name: &str) -> (String, std::path::PathBuf) {
 /// `cost_aware` on `map` from raw scans, with `bench floors`' robot and the lidar and
 /// drift: the run record, written to `out`.
 fn raw_cost_aware_run(map: &str, seed: &str, extra: &[&str], out: &std::path::Path) -> Value {
-    let mut args = vec!["--seed", seed, "explore", "--env", map, "--strategy", "cost_aware"];
+    raw_run(map, "cost_aware", seed, extra, out)
+}
+
+/// [`raw_cost_aware_run`] with another strategy.
+fn raw_run(map: &str, strategy: &str, seed: &str, extra: &[&str], out: &std::path::Path) -> Value {
+    let mut args = vec!["--seed", seed, "explore", "--env", map, "--strategy", strategy];
     args.extend(extra);
     args.extend(["--robot-radius", "0.2", "--range", "20", "--scan-time", "30"]);
     args.extend(["--speed", "0.5", "--optimum-seconds", "0", "--bounds-seconds", "0"]);
@@ -511,18 +516,20 @@ fn raw_cost_aware_run(map: &str, seed: &str, extra: &[&str], out: &std::path::Pa
     serde_json::from_slice(&std::fs::read(out).unwrap()).unwrap()
 }
 
-/// Relays. On depot the first trip runs 20 m along the hall, to where the first scan's walls
-/// are little more than the hall's long sides: ICP cannot place the scan there along the
-/// hall, and it kept odometry's pose, 0.2 to 0.3 m off, and every later stop aligned to the
-/// walls it put in the wrong place. With relays the robot stops on the way where a scan is
-/// predicted to be placed, and every stop stays within 0.1 m. The record counts the relay
-/// among the scans, flags its stop, and lists it among the scans taken.
+/// Relays. On depot `range_limited`'s first trip runs along the hall, to where the first
+/// scan's walls are little more than the hall's long sides: ICP cannot place the scan there
+/// along the hall, and it kept odometry's pose, 0.2 to 0.3 m off, and every later stop
+/// aligned to the walls it put in the wrong place. With relays the robot stops on the way
+/// where a scan is predicted to be placed, and every stop stays within 0.1 m. The record
+/// counts the relay among the scans, flags its stop, and lists it among the scans taken.
+/// (`cost_aware` made that trip too until window parts onto walls seen were closed: the
+/// window it went for was a sliver along a wall.)
 #[test]
 fn raw_scans_relay_on_a_trip_to_where_a_scan_cannot_be_placed() {
     let (map, out) = depot_and_record("relays");
-    for seed in ["3", "7"] {
-        let on = raw_cost_aware_run(&map, seed, &[], &out);
-        let off = raw_cost_aware_run(&map, seed, &["--relay", "0"], &out);
+    for seed in ["3", "4"] {
+        let on = raw_run(&map, "range_limited", seed, &[], &out);
+        let off = raw_run(&map, "range_limited", seed, &["--relay", "0"], &out);
         let stops = |r: &Value| r["raw_scans"]["stops"].as_array().unwrap().clone();
         let flagged = |r: &Value| stops(r).iter().filter(|s| s["relay"] == true).count();
         let relays = on["raw_scans"]["relays"].as_u64().unwrap() as usize;

@@ -104,7 +104,7 @@ fn the_lidar_truth_and_the_belief_start_together() {
     assert!(first.alignment.is_none(), "nothing to align the first scan to");
 }
 
-/// Drives a `serve` session in process with a simulated robot on depot (`cost_aware`, 720
+/// Drives a `serve` session in process with a simulated robot on depot (`range_limited`, 720
 /// beams, 1% drift), `relay` in the start message when given: the largest distance between
 /// where a scan was placed and where it was truly taken.
 fn served_depot(seed: u64, relay: Option<f64>) -> f64 {
@@ -120,7 +120,7 @@ fn served_depot(seed: u64, relay: Option<f64>) -> f64 {
     let world = PolygonWorld::with_robot(env.domain, Some(20.0), &disc, start).unwrap();
     let start = world.reach().expect("a robot with a body").start();
     let mut setup = serde_json::json!({
-        "strategy": "cost_aware", "cost": {"scan_time": 30.0, "speed": 0.5},
+        "strategy": "range_limited", "cost": {"scan_time": 30.0, "speed": 0.5},
         "robot": {"radius": 0.2}, "sensor": {"sigma": 0.02, "range": 20.0},
         "odometry_drift": 0.01,
     });
@@ -151,14 +151,15 @@ fn served_depot(seed: u64, relay: Option<f64>) -> f64 {
         .fold(0.0, f64::max)
 }
 
-/// `serve` takes relays as `explore --sensor lidar` does: on depot's first trip, 20 m along
-/// the hall to where a scan cannot be placed along it, the server sends the robot to a
-/// relay on the way and asks for its scan, and every scan is placed within 0.1 m; with
-/// `"relay": 0` the second scan keeps odometry's 0.2 to 0.3 m error, and the stops after it
-/// align to its walls.
+/// `serve` takes relays as `explore --sensor lidar` does: on depot's first trip, along the
+/// hall to where a scan cannot be placed along it, the server sends the robot to a relay on
+/// the way and asks for its scan, and every scan is placed within 0.1 m; with `"relay": 0`
+/// the second scan keeps odometry's 0.2 to 0.3 m error, and the stops after it align to its
+/// walls. (`cost_aware` no longer makes that trip first: the window it went for was a sliver
+/// along a wall, closed since window parts onto walls seen are.)
 #[test]
 fn serve_sends_the_robot_to_a_relay_where_a_trip_ends_beyond_what_icp_can_place() {
-    for seed in [3, 7] {
+    for seed in [3, 4] {
         // Relays are the only difference between the two sessions.
         let on = served_depot(seed, None);
         let off = served_depot(seed, Some(0.0));
