@@ -204,11 +204,11 @@ const STEP_BACK: [f64; 2] = [2.0, 4.0];
 /// 8 s).
 const HORIZON: f64 = 5.0;
 
-// The lengths of the predicted gain, as fractions of the length scale (the range, or
-// without one how far the first scan reached): the raster's cell ([`CELL`], 10 cm at 20 m),
-// how far a ray counts unknown space ([`DEPTH`], 8 m: 12,460 s at 2 m and 12,405 s at 20 m,
-// before the assumed walls), how far beyond the box of what was seen (0.5 m), and how far a
-// wall is assumed to run on out of sight (2 m; 1 m and 3 m did no better).
+/// The lengths of the predicted gain, as fractions of the length scale (the range, or
+/// without one how far the first scan reached): how far beyond the box of what was seen
+/// (0.5 m), and how far a wall is assumed to run on out of sight (2 m; 1 m and 3 m did no
+/// better). The raster's cell is [`CELL`] (10 cm at 20 m), and a ray counts unknown space
+/// out to [`DEPTH`] (8 m: 12,460 s at 2 m and 12,405 s at 20 m, before the assumed walls).
 const MARGIN: f64 = 0.025;
 const ASSUMED_WALL: f64 = 0.1;
 

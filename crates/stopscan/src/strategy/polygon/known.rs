@@ -193,8 +193,8 @@ pub(super) struct Known {
     asked: Vec<Point>,
     /// The window part the next scan is for.
     pending: Option<Target>,
-    /// On raw scans, the occupancy raster of the views ([`Known::walled`]): rebuilt from the
-    /// views after deserialising.
+    /// On raw scans, the occupancy raster of the views ([`Known::close_if_walled`]): rebuilt
+    /// from the views after deserialising.
     #[serde(skip)]
     walls_seen: WallsSeen,
     /// The trip being driven.
