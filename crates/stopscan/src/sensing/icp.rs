@@ -768,6 +768,7 @@ pub const PREDICTION_MARGIN: f64 = 4.0;
 /// corridor, or of a hall it has seen only one side of) can stop on the way, where one can.
 pub fn predict(
     map: &WallMap,
+    occluders: &WallMap,
     at: Point,
     beams: usize,
     range: f64,
@@ -775,10 +776,16 @@ pub fn predict(
 ) -> Prediction {
     let mut points = Vec::new();
     let mut normals = Vec::new();
+    let dist = |q: Point| (q[0] - at[0]).hypot(q[1] - at[1]);
     for k in 0..beams {
         let a = std::f64::consts::TAU * k as f64 / beams as f64;
         let to = [at[0] + range * a.cos(), at[1] + range * a.sin()];
         if let Some((q, n)) = map.first_hit(at, to) {
+            // A surface seen too sparsely for a wall, or a short gap between returns, may
+            // hide the wall from here.
+            if occluders.first_hit(at, q).is_some_and(|(o, _)| dist(o) < dist(q) - OCCLUDED) {
+                continue;
+            }
             points.push([q[0] - at[0], q[1] - at[1]]);
             normals.push(Some(n));
         }
@@ -795,6 +802,10 @@ pub fn predict(
         if top > 0.0 { vals.iter().copied().fold(f64::INFINITY, f64::min) / top } else { 0.0 };
     Prediction { pairs, degenerate: weak.map(shift_of), weakest }
 }
+
+/// A predicted return is hidden when an occluder ([`predict`]) stands this much nearer
+/// than its wall, metres.
+pub const OCCLUDED: f64 = 0.1;
 
 /// The shift of a free motion `(dx, dy, dθ·lever)` (mostly a shift: [`solve`]), as a unit
 /// vector.
@@ -1435,22 +1446,66 @@ mod tests {
         let params = IcpParams::default();
         let mut room = WallMap::new();
         room.extend(&closed_room());
-        let p = predict(&room, [3.0, 2.0], 720, 20.0, &params);
+        let p = predict(&room, &WallMap::new(), [3.0, 2.0], 720, 20.0, &params);
         assert!(p.places(&params) && p.degenerate.is_none(), "{p:?}");
         // Every beam meets a wall, and every return pairs.
         assert_eq!(p.pairs, 720, "{p:?}");
         // A corridor 40 m long seen without its ends: nothing fixes a shift along it.
         let mut corridor = WallMap::new();
         corridor.extend(&[[[0.0, 0.0], [40.0, 0.0]], [[40.0, 2.0], [0.0, 2.0]]]);
-        let c = predict(&corridor, [20.0, 1.0], 720, 20.0, &params);
+        let c = predict(&corridor, &WallMap::new(), [20.0, 1.0], 720, 20.0, &params);
         assert!(!c.places(&params), "{c:?}");
         let along = c.degenerate.expect("a direction left free");
         assert!(along[0].abs() > 0.99, "{along:?}");
         // Out of range of every wall, or with no wall at all: no pairs.
-        assert_eq!(predict(&room, [3.0, 2.0], 360, 1.0, &params).pairs, 0);
-        assert_eq!(predict(&WallMap::new(), [3.0, 2.0], 360, 20.0, &params).pairs, 0);
+        assert_eq!(predict(&room, &WallMap::new(), [3.0, 2.0], 360, 1.0, &params).pairs, 0);
+        assert_eq!(
+            predict(&WallMap::new(), &WallMap::new(), [3.0, 2.0], 360, 20.0, &params).pairs,
+            0
+        );
         // The back of a wall (seen from the side it was not seen from) pairs with nothing.
-        assert_eq!(predict(&room, [3.0, -2.0], 720, 20.0, &params).pairs, 0);
+        assert_eq!(predict(&room, &WallMap::new(), [3.0, -2.0], 720, 20.0, &params).pairs, 0);
+    }
+
+    #[test]
+    fn walls_behind_an_occluder_are_not_predicted_to_pair() {
+        let params = IcpParams::default();
+        let mut room = WallMap::new();
+        room.extend(&closed_room());
+        let mut screen = WallMap::new();
+        screen.extend(&[[[5.0, 0.5], [5.0, 4.5]]]);
+        let at = [3.0, 2.0];
+        let p = predict(&room, &screen, at, 720, 20.0, &params);
+        // From the definition: a beam's first wall of the room, and whether it crosses the
+        // screen more than `OCCLUDED` before it.
+        let hidden = (0..720)
+            .filter(|&k| {
+                let a = std::f64::consts::TAU * k as f64 / 720.0;
+                let (c, s) = (a.cos(), a.sin());
+                let mut wall = f64::INFINITY;
+                for (t, ok) in [
+                    ((8.0 - at[0]) / c, c > 0.0),
+                    ((0.0 - at[0]) / c, c < 0.0),
+                    ((5.0 - at[1]) / s, s > 0.0),
+                    ((0.0 - at[1]) / s, s < 0.0),
+                ] {
+                    if ok && t < wall {
+                        wall = t;
+                    }
+                }
+                let t = (5.0 - at[0]) / c;
+                let y = at[1] + t * s;
+                c > 0.0 && (0.5..=4.5).contains(&y) && t < wall - OCCLUDED
+            })
+            .count();
+        assert!(hidden > 100, "{hidden}");
+        assert_eq!(p.pairs, 720 - hidden, "{p:?}");
+        // The left wall and the right wall's corners still fix the pose.
+        assert!(p.degenerate.is_none(), "{p:?}");
+        // A screen beyond every wall hides nothing.
+        let mut far = WallMap::new();
+        far.extend(&[[[9.0, -1.0], [9.0, 6.0]]]);
+        assert_eq!(predict(&room, &far, at, 720, 20.0, &params).pairs, 720);
     }
 
     /// A wall as proptest draws it: a start, a run, and whether it is solid (or a bridge).

@@ -25,6 +25,7 @@ use serde::{Deserialize, Serialize};
 use super::icp::{self, Alignment, IcpParams, Prior, WallMap};
 use super::ingest::{Cleaning, IngestError, IngestParams, ingest};
 use super::posegraph::{Edge, Information, PoseGraph};
+use crate::algorithm::visibility::BoundaryPiece;
 use crate::kernel::Point;
 use crate::protocol::laser::{LaserScan, Pose, wrap};
 use crate::protocol::polygon::PolygonObservation;
@@ -152,6 +153,8 @@ struct Kept {
     walls: Vec<[Point; 2]>,
     /// Its bridges (gaps between returns on one wall line), in its scanner's frame.
     bridges: Vec<[Point; 2]>,
+    /// Its occluders ([`occluders`]), in its scanner's frame.
+    occluders: Vec<[Point; 2]>,
     /// The same, indexed for matching.
     local: WallMap,
     /// Whether it was aligned: a scan ICP could not align stays out of the map.
@@ -174,6 +177,8 @@ struct Kept {
 pub struct Mapper {
     params: MapperParams,
     map: WallMap,
+    /// What may hide the map's walls from a scan not taken yet ([`occluders`]).
+    occluders: WallMap,
     kept: Vec<Kept>,
     graph: PoseGraph,
     /// Metres driven since the last stop whose alignment was kept (or the first stop): the
@@ -190,6 +195,7 @@ impl Mapper {
         Self {
             params,
             map: WallMap::new(),
+            occluders: WallMap::new(),
             kept: Vec::new(),
             graph: PoseGraph::new(),
             unaligned: 0.0,
@@ -266,7 +272,8 @@ impl Mapper {
     fn would_place_by(&self, at: Point, beams: usize, range: f64, margin: f64) -> bool {
         let icp = &self.params.icp;
         !self.map.is_empty()
-            && icp::predict(&self.map, at, beams, range, icp).places_by(icp, margin)
+            && icp::predict(&self.map, &self.occluders, at, beams, range, icp)
+                .places_by(icp, margin)
     }
 
     /// The parameters.
@@ -363,6 +370,7 @@ impl Mapper {
         let placement = self.graph.covariance(k).map_or(0.0, |c| largest_spread(&c));
         self.placement = placement;
         self.kept.push(Kept {
+            occluders: occluders(&local.observation, scan.range_max),
             walls: local.walls,
             bridges: local.bridges,
             local: own,
@@ -465,26 +473,81 @@ impl Mapper {
                 && ((s.placed.x - p.x).hypot(s.placed.y - p.y) > REBUILD
                     || wrap(s.placed.theta - p.theta).abs() > REBUILD_TURN)
         });
-        let place = |map: &mut WallMap, k: usize, s: &Kept, at: &Pose| {
+        let place = |map: &mut (WallMap, WallMap), k: usize, s: &Kept, at: &Pose| {
             let placed = |w: &[[Point; 2]]| -> Vec<[Point; 2]> {
                 let at = at.placing();
                 w.iter().map(|w| [at.apply(w[0]), at.apply(w[1])]).collect()
             };
             let (walls, bridges) = (placed(&s.walls), placed(&s.bridges));
-            map.extend_unseen(&walls, &bridges, MAP_PIECE, MAP_SAME_WALL, k as u32);
+            map.0.extend_unseen(&walls, &bridges, MAP_PIECE, MAP_SAME_WALL, k as u32);
+            map.1.extend(&placed(&s.occluders));
         };
+        let mut maps = (std::mem::take(&mut self.map), std::mem::take(&mut self.occluders));
         if moved {
-            self.map = WallMap::new();
+            maps = (WallMap::new(), WallMap::new());
             for (k, (s, p)) in self.kept.iter_mut().zip(poses).enumerate() {
                 if s.aligned {
                     s.placed = *p;
-                    place(&mut self.map, k, s, p);
+                    place(&mut maps, k, s, p);
                 }
             }
         } else if let Some(s) = self.kept.last().filter(|s| s.aligned) {
-            place(&mut self.map, self.kept.len() - 1, s, &s.placed);
+            place(&mut maps, self.kept.len() - 1, s, &s.placed);
         }
+        (self.map, self.occluders) = maps;
     }
+}
+
+/// The longest gap between two returns taken as an occluder, metres ([`occluders`]).
+pub const OCCLUDER_GAP: f64 = 2.0;
+
+/// Three returns lie on one line when the middle one is within this of the line through
+/// the others, metres ([`occluders`]).
+pub const OCCLUDER_LINE: f64 = 0.1;
+
+/// What in a scan's region (in its scanner's frame, reaching `range_max`) may hide a wall
+/// from another place, for [`icp::predict`]: every piece of its boundary along returns, and
+/// the windows of a surface seen too sparsely for a wall of the map (a shelf's face seen at
+/// a grazing angle from far away, whose returns fall a beam apart, each alone): a window
+/// between two returns at most [`OCCLUDER_GAP`] apart whose next or previous window runs
+/// on along its line to a third return ([`OCCLUDER_LINE`]). A window out to no return, an
+/// occluding corner's window alone, and a range frontier hide nothing seen.
+fn occluders(observation: &PolygonObservation, range_max: f64) -> Vec<[Point; 2]> {
+    let at = observation.region.viewpoint;
+    let boundary = &observation.region.boundary;
+    let returned = |p: Point| (p[0] - at[0]).hypot(p[1] - at[1]) < range_max * (1.0 - 1e-6);
+    let gap = |k: usize| match boundary[k] {
+        BoundaryPiece::Window { from, to, .. }
+            if returned(from)
+                && returned(to)
+                && (to[0] - from[0]).hypot(to[1] - from[1]) <= OCCLUDER_GAP =>
+        {
+            Some([from, to])
+        }
+        _ => None,
+    };
+    let n = boundary.len();
+    let on_line = |a: [Point; 2], b: [Point; 2]| {
+        let (p, q, r) = (a[0], a[1], b[1]);
+        let (dx, dy) = (r[0] - p[0], r[1] - p[1]);
+        let l = dx.hypot(dy);
+        l > 0.0
+            && ((q[0] - p[0]) * dy - (q[1] - p[1]) * dx).abs() / l <= OCCLUDER_LINE
+            && (q[0] - p[0]) * dx + (q[1] - p[1]) * dy > 0.0
+            && (r[0] - q[0]) * dx + (r[1] - q[1]) * dy > 0.0
+    };
+    (0..n)
+        .filter_map(|k| match boundary[k] {
+            BoundaryPiece::Wall { from, to } => Some([from, to]),
+            BoundaryPiece::Window { .. } => {
+                let w = gap(k)?;
+                let before = gap((k + n - 1) % n).is_some_and(|v| v[1] == w[0] && on_line(v, w));
+                let after = gap((k + 1) % n).is_some_and(|v| w[1] == v[0] && on_line(w, v));
+                (before || after).then_some(w)
+            }
+            _ => None,
+        })
+        .collect()
 }
 
 /// The standard deviation of a position along its least sure direction, metres: the square
@@ -534,4 +597,47 @@ fn odometry_spread(p: &MapperParams, metres: f64) -> (Prior, f64) {
 /// `m` times `f`.
 fn scaled(m: Information, f: f64) -> Information {
     m.map(|row| row.map(|v| v * f))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::algorithm::visibility::VisibilityRegion;
+
+    fn window(from: Point, to: Point) -> BoundaryPiece {
+        let d = |p: Point| p[0].hypot(p[1]);
+        let (reflex, far) = if d(from) <= d(to) { (from, to) } else { (to, from) };
+        BoundaryPiece::Window { from, to, reflex, far }
+    }
+
+    #[test]
+    fn a_face_seen_one_return_at_a_time_occludes_and_an_occluding_corner_does_not() {
+        // Returns a beam apart along a face at y = 3 seen at a grazing angle (x = 6, 7,
+        // 8, 9.5), then a corner's window out to a wall behind it, a window out to no
+        // return at the range (20 m), a range frontier and a wall.
+        let face = [[6.0, 3.0], [7.0, 3.02], [8.0, 3.0], [9.5, 3.01]];
+        let boundary = vec![
+            BoundaryPiece::Wall { from: [5.0, -1.0], to: face[0] },
+            window(face[0], face[1]),
+            window(face[1], face[2]),
+            window(face[2], face[3]),
+            // The face ends: its last return to a wall 1.5 m behind (an occluding corner).
+            window(face[3], [9.5, 4.5]),
+            BoundaryPiece::Wall { from: [9.5, 4.5], to: [-2.0, 4.5] },
+            window([-2.0, 4.5], [-19.0, 5.0]),
+            BoundaryPiece::Frontier { from: [-19.0, 5.0], to: [-18.0, -7.0] },
+            window([-18.0, -7.0], [5.0, -1.0]),
+        ];
+        let polygon = boundary.iter().map(|b| b.ends().0).collect();
+        let region = VisibilityRegion { viewpoint: [0.0, 0.0], polygon, boundary };
+        let o = occluders(&PolygonObservation::new([0.0, 0.0], region), 20.0);
+        let has = |a: Point, b: Point| o.contains(&[a, b]);
+        // The face's three gaps, each on one line with the next or the one before.
+        assert!(has(face[0], face[1]) && has(face[1], face[2]) && has(face[2], face[3]), "{o:?}");
+        // The walls.
+        assert!(has([5.0, -1.0], face[0]) && has([9.5, 4.5], [-2.0, 4.5]), "{o:?}");
+        // Not the corner's window (it turns off the face's line), nor the long window, the
+        // frontier, or the window from the range back to a return.
+        assert_eq!(o.len(), 5, "{o:?}");
+    }
 }
