@@ -1478,9 +1478,9 @@ mod tests {
         let p = predict(&room, &screen, at, 720, 20.0, &params);
         // From the definition: a beam's first wall of the room, and whether it crosses the
         // screen more than `OCCLUDED` before it.
-        let hidden = (0..720)
+        let hidden = (0..720u32)
             .filter(|&k| {
-                let a = std::f64::consts::TAU * k as f64 / 720.0;
+                let a = std::f64::consts::TAU * f64::from(k) / 720.0;
                 let (c, s) = (a.cos(), a.sin());
                 let mut wall = f64::INFINITY;
                 for (t, ok) in [
