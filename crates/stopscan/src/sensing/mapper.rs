@@ -499,11 +499,11 @@ impl Mapper {
 }
 
 /// The longest gap between two returns taken as an occluder, metres ([`occluders`]).
-pub const OCCLUDER_GAP: f64 = 2.0;
+const OCCLUDER_GAP: f64 = 2.0;
 
 /// Three returns lie on one line when the middle one is within this of the line through
 /// the others, metres ([`occluders`]).
-pub const OCCLUDER_LINE: f64 = 0.1;
+const OCCLUDER_LINE: f64 = 0.1;
 
 /// What in a scan's region (in its scanner's frame, reaching `range_max`) may hide a wall
 /// from another place, for [`icp::predict`]: every piece of its boundary along returns, and
