@@ -5,7 +5,8 @@
 //! of it, in sight of it (consecutive stops), with any heading. The lidar scans from both;
 //! `a`'s scan is read into a wall map; `b`'s scan is aligned to it from `b` moved by up to
 //! `max_shift` metres (uniform in the disc) and turned by up to `max_turn` (uniform), with an
-//! odometry prior of a third of those. A trial converges when the aligned pose is within
+//! odometry prior of a third of those, then refined against `a`'s walls fitted finer
+//! ([`icp::refine`]), as the raw-scan driver does. A trial converges when the aligned pose is within
 //! [`CONVERGED_SHIFT`] and [`CONVERGED_TURN`] of the truth.
 
 use rand::{RngExt, SeedableRng};
@@ -92,9 +93,11 @@ pub fn scan_pairs(
         let ga = ingest(&sa, &pa, &params).expect("the simulated scans are valid");
         let gb = ingest(&sb, &Pose::default(), &params).expect("the simulated scans are valid");
         ingest_s += t.elapsed().as_secs_f64() / 2.0;
-        let mut map = WallMap::new();
+        let (mut map, mut fine) = (WallMap::new(), WallMap::new());
         map.extend(&ga.walls);
         map.extend_bridges(&ga.bridges);
+        fine.extend(&ga.fine_walls);
+        fine.extend_bridges(&ga.bridges);
         let (r, phi): (f64, f64) =
             (max_shift * rng.random::<f64>().sqrt(), rng.random_range(0.0..std::f64::consts::TAU));
         let guess = Pose {
@@ -105,6 +108,8 @@ pub fn scan_pairs(
         let prior = Prior { position: max_shift / 3.0, heading: max_turn / 3.0 };
         let t = std::time::Instant::now();
         let al = icp::align(&gb.points, &gb.normals, &guess, Some(prior), &map, &icp_params);
+        let al = icp::refine(&gb.points, &gb.fine_normals, &al, [&fine, &map], &icp_params)
+            .unwrap_or(al);
         icp_s += t.elapsed().as_secs_f64();
         let err = (al.pose.x - pb.x).hypot(al.pose.y - pb.y);
         let turn = wrap(al.pose.theta - pb.theta).abs();

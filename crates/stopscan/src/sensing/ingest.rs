@@ -25,7 +25,8 @@
 //!    tolerance; each piece gets a least-squares line (orthogonal regression), and
 //!    neighbouring pieces whose joint fit stays within the tolerance are merged again. The
 //!    region's vertices are the runs' ends projected along their beams onto the fitted lines
-//!    and the corners where fitted lines meet.
+//!    and the corners where fitted lines meet. The runs are fitted a second time at a finer
+//!    tolerance ([`IngestParams::fine_split`]), for refining scan matches only.
 //!
 //! Every vertex lies on its beam's ray (a corner, strictly between the rays of its
 //! neighbours), in the order of the beams, so the region is star-shaped from the scanner and
@@ -75,6 +76,12 @@ impl IngestParams {
         }
     }
 
+    /// The tolerance of the finer fit for refining alignments ([`Ingested::fine_walls`]):
+    /// `max(1.5σ, 3 cm)`, at most [`IngestParams::split`].
+    pub fn fine_split(&self) -> f64 {
+        (1.5 * self.sigma).max(0.03).min(self.split)
+    }
+
     /// These parameters with gaps on a wall line up to `min_window` (the shortest window worth
     /// a trip) read as wall too: no door the robot would drive to hides in a shorter one.
     #[must_use]
@@ -121,6 +128,13 @@ pub struct Ingested {
     /// The fitted wall segments, in the same frame: those fitted to at least
     /// [`MIN_WALL_RETURNS`] returns (the region's boundary has the others too).
     pub walls: Vec<[Point; 2]>,
+    /// The walls fitted again at [`IngestParams::fine_split`] (those on at least
+    /// [`MIN_WALL_RETURNS`] returns), for refining an alignment: walls traced from an
+    /// occupancy grid have steps of a cell, which a line fitted at three σ cuts through,
+    /// tilted toward the side its scan saw more of.
+    pub fine_walls: Vec<[Point; 2]>,
+    /// Each return's surface normal from the fine walls, as [`Ingested::normals`].
+    pub fine_normals: Vec<Option<Point>>,
     /// Gaps longer than [`IngestParams::bridge`] between returns on one wall line (left as
     /// windows in the region, since an opening may hide there), as segments between the two
     /// returns: evidence of the line for scan matching, not of a wall.
@@ -223,6 +237,8 @@ pub fn ingest(
         points: t.points.into_iter().map(to_map).collect(),
         normals: t.normals.into_iter().map(|n| n.map(|n| pose.turn(n))).collect(),
         walls: segments(t.walls),
+        fine_walls: segments(t.fine_walls),
+        fine_normals: t.fine_normals.into_iter().map(|n| n.map(|n| pose.turn(n))).collect(),
         bridges: segments(t.bridges),
         cleaning,
     })
@@ -269,9 +285,11 @@ struct Traced {
     /// Vertices with the kind of piece that leaves each one.
     verts: Vec<(Point, Piece)>,
     walls: Vec<[Point; 2]>,
+    fine_walls: Vec<[Point; 2]>,
     bridges: Vec<[Point; 2]>,
     points: Vec<Point>,
     normals: Vec<Option<Point>>,
+    fine_normals: Vec<Option<Point>>,
 }
 
 impl Beams<'_> {
@@ -374,9 +392,11 @@ impl Beams<'_> {
         let mut t = Traced {
             verts: Vec::new(),
             walls: Vec::new(),
+            fine_walls: Vec::new(),
             bridges: Vec::new(),
             points: Vec::new(),
             normals: Vec::new(),
+            fine_normals: Vec::new(),
         };
         // A full turn all on one surface closes on itself: its last piece is a wall too.
         let closed = self.full
@@ -424,18 +444,24 @@ impl Beams<'_> {
         let pts: Vec<Point> = idx.iter().map(|&j| self.point(j)).collect();
         t.points.extend(&pts);
         let dirs: Vec<Point> = idx.iter().map(|&j| self.dirs[j]).collect();
-        let Fit { vertices: vs, support, normals } = fit_run(&pts, &dirs, self.params);
+        let Fit { vertices: vs, support, normals } =
+            fit_run(&pts, &dirs, self.params.split, self.params.sigma);
+        let fine = self.params.fine_split();
+        if fine < self.params.split {
+            let f = fit_run(&pts, &dirs, fine, self.params.sigma);
+            t.fine_normals.extend(f.normals);
+            t.fine_walls.extend(wall_pieces(&f.vertices, &f.support, closed));
+        } else {
+            t.fine_normals.extend(&normals);
+            t.fine_walls.extend(wall_pieces(&vs, &support, closed));
+        }
         t.normals.extend(normals);
         let last = vs.len() - 1;
         for (i, &v) in vs.iter().enumerate() {
             let wall = i < last || closed;
             t.verts.push((v, if wall { Piece::Wall } else { Piece::Break }));
-            // A piece fitted to two returns is the region's boundary, but no evidence of a
-            // wall for scan matching.
-            if wall && support.get(i).copied().unwrap_or(2) >= MIN_WALL_RETURNS {
-                t.walls.push([v, vs[(i + 1) % vs.len()]]);
-            }
         }
+        t.walls.extend(wall_pieces(&vs, &support, closed));
         // A long gap to the next run on the same line: evidence for scan matching.
         let (a, b) = (e % n, (e + 1) % n);
         if (e + 1 < n || self.full)
@@ -447,6 +473,19 @@ impl Beams<'_> {
             t.bridges.push([self.point(a), self.point(b)]);
         }
     }
+}
+
+/// The walls for scan matching among a run's fitted pieces (its vertices `vs`, each piece's
+/// `support`; the last vertex joins the first when the run is `closed`): a piece fitted to
+/// two returns is the region's boundary, but no evidence of a wall.
+fn wall_pieces(vs: &[Point], support: &[usize], closed: bool) -> Vec<[Point; 2]> {
+    let last = vs.len() - 1;
+    (0..vs.len())
+        .filter(|&i| {
+            (i < last || closed) && support.get(i).copied().unwrap_or(2) >= MIN_WALL_RETURNS
+        })
+        .map(|i| [vs[i], vs[(i + 1) % vs.len()]])
+        .collect()
 }
 
 /// The piece that leaves a vertex.
@@ -529,10 +568,10 @@ fn despeckle(
     count
 }
 
-/// Split-and-merge over one run of returns `pts` (on the rays `dirs`, `dphi` apart): the
-/// run's vertices, its ends projected along their rays onto the fitted lines and corners
-/// where lines meet.
-fn fit_run(pts: &[Point], dirs: &[Point], params: &IngestParams) -> Fit {
+/// Split-and-merge at tolerance `split` over one run of returns `pts` (on the rays `dirs`,
+/// with range noise `sigma`): the run's vertices, its ends projected along their rays onto
+/// the fitted lines and corners where lines meet.
+fn fit_run(pts: &[Point], dirs: &[Point], split: f64, sigma: f64) -> Fit {
     let n = pts.len();
     if n == 1 {
         return Fit { vertices: vec![pts[0]], support: Vec::new(), normals: vec![None] };
@@ -548,7 +587,7 @@ fn fit_run(pts: &[Point], dirs: &[Point], params: &IngestParams) -> Fit {
         let far = (a + 1..b)
             .map(|i| (i, crate::geometry::segment_distance(pts[i], p, q)))
             .fold((a, -1.0), |m, x| if x.1 > m.1 { x } else { m });
-        if far.1 > params.split {
+        if far.1 > split {
             cuts.push(far.0);
             stack.push((a, far.0));
             stack.push((far.0, b));
@@ -560,14 +599,14 @@ fn fit_run(pts: &[Point], dirs: &[Point], params: &IngestParams) -> Fit {
     while i + 1 < cuts.len() {
         let (a, b) = (cuts[i - 1], cuts[i + 1]);
         let line = fit_line(&pts[a..=b]);
-        if pts[a..=b].iter().all(|p| line.distance(*p) <= params.split) {
+        if pts[a..=b].iter().all(|p| line.distance(*p) <= split) {
             cuts.remove(i);
         } else {
             i += 1;
         }
     }
     let lines: Vec<Line> = cuts.windows(2).map(|w| fit_line(&pts[w[0]..=w[1]])).collect();
-    let tol = (4.0 * params.sigma).max(params.split);
+    let tol = (4.0 * sigma).max(split);
     let onto = |k: usize, l: &Line| l.along_ray(dirs[k], pts[k], tol).unwrap_or(pts[k]);
     let mut out = vec![onto(0, &lines[0])];
     for (j, &c) in cuts.iter().enumerate().skip(1).take(cuts.len() - 2) {
@@ -925,6 +964,73 @@ mod tests {
             assert!(agrees, "return {q:?}: normal {n:?} is no wall's through it");
         }
         assert!(corners > 0 && corners < g.points.len() / 10, "{corners} corners");
+    }
+
+    /// A room whose north wall is traced from a 5 cm grid: it rises a cell every 0.6 m, a
+    /// staircase 0.3 m at most from a straight line, as `map import` makes of a wall drawn at
+    /// a slant. Scanned without noise from (2, 2), read as if σ were 2 cm.
+    fn stepped_room() -> (crate::geometry::Domain, LaserScan, Pose) {
+        let mut ring = vec![[0.0, 0.0], [8.0, 0.0]];
+        // East to west along the top: y = 5 + 0.05 · step, a step every 0.6 m.
+        let steps = 12;
+        for k in (0..steps).rev() {
+            let (x1, x0) = (0.6 * f64::from(k + 1) + 0.4, 0.6 * f64::from(k) + 0.4);
+            let y = 5.0 + 0.05 * f64::from(k);
+            if k + 1 == steps {
+                ring.push([8.0, y]);
+            }
+            ring.push([x1.min(8.0), y]);
+            ring.push([x0, y]);
+            if k > 0 {
+                ring.push([x0, y - 0.05]);
+            }
+        }
+        ring.push([0.0, 5.0]);
+        ring.dedup();
+        let room = crate::geometry::Domain::new(ring, vec![]).unwrap();
+        let at = Pose::new([2.0, 2.0], 0.0);
+        // 720 exact beams, each to the nearest edge it meets.
+        let cast = |a: f64| {
+            let u = [a.cos(), a.sin()];
+            room.rings()
+                .iter()
+                .flat_map(|r| (0..r.len()).map(move |i| [r[i], r[(i + 1) % r.len()]]))
+                .filter_map(|e| crate::geometry::ray_segment(at.at(), u, e[0], e[1]))
+                .reduce(f64::min)
+                .filter(|&t| t < 20.0)
+                .unwrap_or(f64::INFINITY)
+        };
+        let scan = turn(720, cast);
+        (room, scan, at)
+    }
+
+    #[test]
+    fn fine_walls_follow_a_grid_traced_wall_the_coarse_ones_cut_through() {
+        let (room, scan, at) = stepped_room();
+        let p = IngestParams::for_noise(0.02);
+        assert!(p.fine_split() < p.split);
+        let g = ingest(&scan, &at, &p).unwrap();
+        assert_eq!(g.fine_normals.len(), g.points.len());
+        // How far a wall strays from the room's boundary, at most (21 points along it).
+        let stray = |w: &[Point; 2]| {
+            (0..=20)
+                .map(|i| {
+                    let t = f64::from(i) / 20.0;
+                    let e = [w[0][0] + t * (w[1][0] - w[0][0]), w[0][1] + t * (w[1][1] - w[0][1])];
+                    nearest_edge(&room, e).1
+                })
+                .fold(0.0, f64::max)
+        };
+        let top = |w: &&[Point; 2]| w[0][1] > 4.9 && w[1][1] > 4.9;
+        // The coarse walls along the top cut through its steps (the test would prove nothing
+        // otherwise); the fine ones, and every other fine wall, stay within their tolerance.
+        let coarse = g.walls.iter().filter(top).map(stray).fold(0.0, f64::max);
+        assert!(coarse > p.fine_split(), "coarse walls within {coarse}");
+        assert!(g.fine_walls.iter().filter(top).count() > g.walls.iter().filter(top).count());
+        for w in &g.fine_walls {
+            let d = stray(w);
+            assert!(d <= p.fine_split() + 1e-9, "{w:?} strays {d} from the wall");
+        }
     }
 
     #[test]

@@ -157,6 +157,11 @@ struct Kept {
     occluders: Vec<[Point; 2]>,
     /// The same, indexed for matching.
     local: WallMap,
+    /// Its walls fitted finer ([`Ingested::fine_walls`](super::ingest::Ingested)), in its
+    /// scanner's frame.
+    fine_walls: Vec<[Point; 2]>,
+    /// The same, indexed for refining matches ([`icp::refine`]).
+    fine_local: WallMap,
     /// Whether it was aligned: a scan ICP could not align stays out of the map.
     aligned: bool,
     /// Its farthest return, metres.
@@ -177,6 +182,8 @@ struct Kept {
 pub struct Mapper {
     params: MapperParams,
     map: WallMap,
+    /// The aligned stops' walls fitted finer, for refining alignments ([`icp::refine`]).
+    fine_map: WallMap,
     /// What may hide the map's walls from a scan not taken yet ([`occluders`]).
     occluders: WallMap,
     kept: Vec<Kept>,
@@ -195,6 +202,7 @@ impl Mapper {
         Self {
             params,
             map: WallMap::new(),
+            fine_map: WallMap::new(),
             occluders: WallMap::new(),
             kept: Vec::new(),
             graph: PoseGraph::new(),
@@ -318,8 +326,19 @@ impl Mapper {
             max_turn: (3.0 * prior.heading).max(MIN_PLAUSIBLE_TURN),
             ..p.icp
         };
+        let mut refined = false;
         let alignment = (!self.map.is_empty()).then(|| {
-            icp::align(&local.points, &local.normals, odometry, Some(prior), &self.map, &icp)
+            let a =
+                icp::align(&local.points, &local.normals, odometry, Some(prior), &self.map, &icp);
+            let fine = icp::refine(
+                &local.points,
+                &local.fine_normals,
+                &a,
+                [&self.fine_map, &self.map],
+                &icp,
+            );
+            refined = fine.is_some();
+            fine.unwrap_or(a)
         });
         let aligned = alignment.as_ref().is_none_or(|a| a.fallback.is_none());
         self.unaligned = if aligned { 0.0 } else { driven_since };
@@ -327,6 +346,9 @@ impl Mapper {
         let mut own = WallMap::new();
         own.extend(&local.walls);
         own.extend_bridges(&local.bridges);
+        let mut fine_own = WallMap::new();
+        fine_own.extend(&local.fine_walls);
+        fine_own.extend_bridges(&local.bridges);
         // The farthest return: how far the scan reaches.
         let far = local.points.iter().map(|q| q[0].hypot(q[1])).fold(0.0, f64::max);
         let k = self.graph.add_node(initial);
@@ -348,8 +370,13 @@ impl Mapper {
             // must outweigh it. (Tied to the nearest stop instead, an alignment to walls
             // placed well would carry the error of a nearby stop placed badly, and hold it
             // there against the loop closure that should move it.)
+            let (normals, map) = if refined {
+                (&local.fine_normals, &self.fine_map)
+            } else {
+                (&local.normals, &self.map)
+            };
             for (owner, information, _) in
-                icp::information_by_owner(&local.points, &local.normals, &initial, &self.map, &icp)
+                icp::information_by_owner(&local.points, normals, &initial, map, &icp)
             {
                 let j = owner as usize;
                 if j >= k {
@@ -363,7 +390,7 @@ impl Mapper {
                     information: scaled(in_frame(information, from.theta), 1.0 / LINK_INFLATION),
                 });
             }
-            links = self.link(k, (&local.points, &local.normals), far, &initial, &icp);
+            links = self.link(k, &local, far, &initial, &icp);
         }
         self.graph.optimize(GRAPH_STEPS);
         let estimate = self.graph.poses()[k];
@@ -374,6 +401,8 @@ impl Mapper {
             walls: local.walls,
             bridges: local.bridges,
             local: own,
+            fine_walls: local.fine_walls,
+            fine_local: fine_own,
             aligned,
             reach: far,
             reported: estimate,
@@ -394,7 +423,7 @@ impl Mapper {
     fn link(
         &mut self,
         k: usize,
-        (points, normals): (&[Point], &[Option<Point>]),
+        scan: &super::ingest::Ingested,
         far: f64,
         initial: &Pose,
         icp: &IcpParams,
@@ -428,11 +457,25 @@ impl Mapper {
             let from = self.graph.poses()[j];
             let stop = &self.kept[j];
             let start = from.inverse().compose(initial);
+            let (points, normals) = (&scan.points, &scan.normals);
             let a = icp::align(points, normals, &start, Some(LINK_PRIOR), &stop.local, &single);
             if a.fallback.is_some() || !a.converged || a.pairs < LINK_MIN_PAIRS {
                 continue;
             }
-            let information = icp::information(points, normals, &a.pose, &stop.local, icp);
+            let fine = icp::refine(
+                points,
+                &scan.fine_normals,
+                &a,
+                [&stop.fine_local, &stop.local],
+                &single,
+            );
+            let information = match &fine {
+                Some(f) => {
+                    icp::information(points, &scan.fine_normals, &f.pose, &stop.fine_local, icp)
+                }
+                None => icp::information(points, normals, &a.pose, &stop.local, icp),
+            };
+            let a = fine.unwrap_or(a);
             let edge = Edge {
                 from: j,
                 to: k,
@@ -473,7 +516,7 @@ impl Mapper {
                 && ((s.placed.x - p.x).hypot(s.placed.y - p.y) > REBUILD
                     || wrap(s.placed.theta - p.theta).abs() > REBUILD_TURN)
         });
-        let place = |map: &mut (WallMap, WallMap), k: usize, s: &Kept, at: &Pose| {
+        let place = |map: &mut (WallMap, WallMap, WallMap), k: usize, s: &Kept, at: &Pose| {
             let placed = |w: &[[Point; 2]]| -> Vec<[Point; 2]> {
                 let at = at.placing();
                 w.iter().map(|w| [at.apply(w[0]), at.apply(w[1])]).collect()
@@ -481,10 +524,21 @@ impl Mapper {
             let (walls, bridges) = (placed(&s.walls), placed(&s.bridges));
             map.0.extend_unseen(&walls, &bridges, MAP_PIECE, MAP_SAME_WALL, k as u32);
             map.1.extend(&placed(&s.occluders));
+            map.2.extend_unseen(
+                &placed(&s.fine_walls),
+                &bridges,
+                MAP_PIECE,
+                MAP_SAME_WALL,
+                k as u32,
+            );
         };
-        let mut maps = (std::mem::take(&mut self.map), std::mem::take(&mut self.occluders));
+        let mut maps = (
+            std::mem::take(&mut self.map),
+            std::mem::take(&mut self.occluders),
+            std::mem::take(&mut self.fine_map),
+        );
         if moved {
-            maps = (WallMap::new(), WallMap::new());
+            maps = (WallMap::new(), WallMap::new(), WallMap::new());
             for (k, (s, p)) in self.kept.iter_mut().zip(poses).enumerate() {
                 if s.aligned {
                     s.placed = *p;
@@ -494,7 +548,7 @@ impl Mapper {
         } else if let Some(s) = self.kept.last().filter(|s| s.aligned) {
             place(&mut maps, self.kept.len() - 1, s, &s.placed);
         }
-        (self.map, self.occluders) = maps;
+        (self.map, self.occluders, self.fine_map) = maps;
     }
 }
 
