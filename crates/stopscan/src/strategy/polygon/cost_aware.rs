@@ -48,7 +48,11 @@
 //!   of its view's region can stand a rounding error nearer to that wall in the union, whose
 //!   boolean operation computes its vertices anew; the route then fell back to the tree,
 //!   which on raw scans ran 30 to 75 m for hops of 1 to 2 m on depot and the warehouse.
-//!   Every move so lies in space seen free around the robot. Where no safe cell
+//!   Every move so lies in space seen free around the robot. Where no safe cell near the
+//!   viewpoint leads on to it (a narrow place the safe cells' rounded inflation closes), the
+//!   roads lead to the last waypoint of the tree of moves toward it that they reach, and the
+//!   tree's moves go on from there (raw scans, depot, seed 2: 37.7 m for a hop of 2 m along
+//!   the tree alone; `bench floors` 11,359 s → 11,347 s). Where no safe cell
 //!   near a viewpoint is reached (a passage the safe
 //!   cells close, a start in a corner), and for a point robot, the route is the tree of
 //!   moves between viewpoints with its corners cut inside single views' regions
@@ -142,6 +146,19 @@
 //!   its rooms with desks took three to five scans each. Two diagonal corners see all round
 //!   a desk, but after the first scan the far corner lies in the desk's shadow, and no
 //!   viewpoint is planned in space not seen.
+//!
+//! Tried on 2026-12-07 (later) on `bench floors`, and not kept:
+//! - **Corners of other views' regions** as candidates for a part, when they see its middle
+//!   across the union of the views (anchored at that view, as a part seen from a corridor is
+//!   reached inside a later view's region). On office-5 the desk's shadow in the lower right
+//!   room is bounded by a window of the corridor's view (scan 3) and one of the room's (scan
+//!   4); the room's far corner, which sees both, belongs to scan 4's region and was no
+//!   candidate for scan 3's window. With it, office-5 took 13 scans instead of 14, office-2
+//!   27 instead of 29; but office-9 33 instead of 30, depot 16 instead of 14 and the
+//!   warehouse 26 instead of 24: 280 → 285 scans and 11,359 s → 11,612 s in all. The corner
+//!   is predicted to see no more than the window's own viewpoint (3.75 m² against 3.99 m²
+//!   there): the scans it would save are those a remainder costs later, which a one-step
+//!   rate does not see.
 //!
 //! # Why one-step choices stop short of 0.75
 //! With an oracle in place of the prediction (the true new area of every candidate's scan,
@@ -575,10 +592,28 @@ impl CostAware {
         }
         let Some((_, i, road)) = best else { return Action::Done };
         let t = ranked.swap_remove(i).2;
+        let road = road.or_else(|| roads.as_ref().and_then(|r| self.road_then_tree(r, cur, &t)));
         match road {
             Some(pts) => self.known.go_along(pts, t),
             None => self.known.go_shortcut(cur, t),
         }
+    }
+
+    /// Where no safe cell near the viewpoint of `t` leads on to it (a viewpoint in a narrow
+    /// place, planned at the clearance inside its view's region, that the safe cells' rounded
+    /// inflation closes): the roads to the last waypoint of the tree of moves toward it that
+    /// they reach, then the tree's moves on from there. Along the tree alone, from where the
+    /// robot stands, the trip went back through every viewpoint between (on depot, raw scans,
+    /// seed 2: 37.7 m for a hop of 2 m).
+    fn road_then_tree(&self, roads: &Roads, cur: usize, t: &Target) -> Option<Vec<Point>> {
+        let (mut tree, _) = self.known.route(cur, t.base());
+        tree.extend_from_slice(&t.via);
+        tree.push(t.at);
+        (0..tree.len() - 1).rev().find_map(|j| {
+            let mut pts = self.road_to(roads, tree[j])?;
+            pts.extend_from_slice(&tree[j + 1..]);
+            Some(pts)
+        })
     }
 }
 
