@@ -116,8 +116,10 @@ pub(crate) fn run(a: &ExploreArgs, g: &Global) -> anyhow::Result<()> {
         spinner.show(m);
     })
     .map_err(|e| match e {
-        // The robot does not fit this environment: say which file.
+        // The robot does not fit this environment, or the start is not where a lidar can
+        // scan from: say which file.
         ExploreError::World(w) => anyhow::anyhow!("{}: {w}", a.env.display()),
+        e @ ExploreError::StartOnWall(_) => anyhow::anyhow!("{}: {e}", a.env.display()),
         e => explore_error(e),
     })?;
     drop(spinner);

@@ -70,6 +70,13 @@ fn a_start_on_a_wall_or_a_vertex_is_explored() {
             assert_eq!(first, &serde_json::json!(given), "the path starts where asked");
             assert!(rec["error"].is_null());
         }
+        // A lidar cannot scan from inside a wall: a clear error that names the file.
+        let args = ["explore", "--env", &office, "--start", start, "--sensor", "lidar"];
+        let out = stopscan(&args);
+        let err = String::from_utf8_lossy(&out.stderr);
+        assert!(!out.status.success(), "{args:?}");
+        assert!(err.contains("office.geojson") && err.contains("lies on a wall"), "{err}");
+        assert!(!err.contains("panicked"), "{err}");
     }
 }
 

@@ -348,6 +348,14 @@ pub enum ExploreError {
     /// The start lies outside the free space (input coordinates).
     #[error("the start ({}, {}) is outside the free space", Num(.0[0]), Num(.0[1]))]
     StartOutside(Point),
+    /// A lidar run (`--sensor lidar`) starts on a wall (input coordinates): the beams that
+    /// leave the free space there would meet no wall, and read as open space beyond it.
+    #[error(
+        "the start ({}, {}) lies on a wall: a lidar scans from inside the free space (give a start off the boundary)",
+        Num(.0[0]),
+        Num(.0[1])
+    )]
+    StartOnWall(Point),
     /// The robot's footprint fits nowhere, or not at the start (input coordinates).
     #[error(transparent)]
     World(#[from] WorldError),
@@ -567,6 +575,9 @@ pub fn explore(
     };
     if world.scan(start).is_err() {
         return Err(ExploreError::StartOutside(frame.to_input(start)));
+    }
+    if lidar.is_some() && env.domain.locate(start) == crate::geometry::Location::Boundary {
+        return Err(ExploreError::StartOnWall(frame.to_input(start)));
     }
     let mut counter = Counter::new(&mut progress, o.max_scans);
     let mut drive = |observer: &mut dyn Observer<Point, PolygonObservation>| {
@@ -821,6 +832,27 @@ mod tests {
         let o = ExploreOptions { strategy: "warp".into(), ..ExploreOptions::default() };
         let e = explore("office", &env, Some([0.0, 0.0]), &o, &mut |_| {}).unwrap_err();
         assert!(matches!(e, ExploreError::Strategy(_)), "{e}");
+    }
+
+    #[test]
+    fn a_lidar_run_on_a_wall_is_an_error_and_the_exact_sensor_runs() {
+        // The office's outer corner (0, 0) and a point on its west wall: from there, the
+        // beams that leave the free space meet no wall. The exact sensor sees from there.
+        let env = crate::io::text_formats::parse_geojson(OFFICE_GEOJSON, "office").unwrap();
+        let lidar = ExploreOptions {
+            lidar: Some(crate::world::lidar::Lidar::default()),
+            ..ExploreOptions::default()
+        };
+        for at in [[0.0, 0.0], [0.0, 2.0]] {
+            let e = explore("office", &env, Some(at), &lidar, &mut |_| {}).unwrap_err();
+            assert!(matches!(e, ExploreError::StartOnWall(p) if p == at), "{e}");
+            assert!(e.to_string().contains("lies on a wall"), "{e}");
+            let exact = ExploreOptions { max_scans: Some(2), ..ExploreOptions::default() };
+            assert!(explore("office", &env, Some(at), &exact, &mut |_| {}).is_ok());
+        }
+        // Just inside, it runs (two scans are enough to tell).
+        let short = ExploreOptions { max_scans: Some(2), ..lidar };
+        assert!(explore("office", &env, Some([0.5, 0.5]), &short, &mut |_| {}).is_ok());
     }
 
     #[test]

@@ -61,14 +61,14 @@ pub enum WorldError {
     #[error(transparent)]
     Visibility(#[from] VisibilityError),
     /// The footprint fits nowhere.
-    #[error("the robot's footprint (clearance {clearance} m) fits nowhere in the free space")]
+    #[error("the robot's footprint (clearance {clearance:.3} m) fits nowhere in the free space")]
     NoRoom {
         /// The footprint's clearance, metres.
         clearance: f64,
     },
     /// The footprint does not fit at the start.
     #[error(
-        "the robot's footprint (clearance {clearance} m) does not fit at the start ({}, {}): it is too close to an obstacle; move the start or shrink the robot",
+        "the robot's footprint (clearance {clearance:.3} m) does not fit at the start ({}, {}): it is too close to an obstacle; move the start or shrink the robot",
         crate::kernel::Num(start[0]), crate::kernel::Num(start[1])
     )]
     StartBlocked {
