@@ -873,20 +873,24 @@ mod tests {
             ]],
         )
         .unwrap();
-        // 720 exact beams, each to the nearest edge it meets.
         let at = Pose::new([2.0, 3.0], 0.3);
-        let cast = |a: f64| {
+        let scan = exact_scan(&hall, &at);
+        (hall, scan, at)
+    }
+
+    /// 720 exact beams from `at` (in its frame), each to the nearest edge of `d` it meets
+    /// within 20 m.
+    fn exact_scan(d: &crate::geometry::Domain, at: &Pose) -> LaserScan {
+        turn(720, |a: f64| {
             let u = [(a + at.theta).cos(), (a + at.theta).sin()];
-            hall.rings()
+            d.rings()
                 .iter()
                 .flat_map(|r| (0..r.len()).map(move |i| [r[i], r[(i + 1) % r.len()]]))
                 .filter_map(|e| crate::geometry::ray_segment(at.at(), u, e[0], e[1]))
                 .reduce(f64::min)
                 .filter(|&t| t < 20.0)
                 .unwrap_or(f64::INFINITY)
-        };
-        let scan = turn(720, cast);
-        (hall, scan, at)
+        })
     }
 
     /// The unit normal of the domain's edge nearest `p`, and how far `p` is from it.
@@ -989,18 +993,7 @@ mod tests {
         ring.dedup();
         let room = crate::geometry::Domain::new(ring, vec![]).unwrap();
         let at = Pose::new([2.0, 2.0], 0.0);
-        // 720 exact beams, each to the nearest edge it meets.
-        let cast = |a: f64| {
-            let u = [a.cos(), a.sin()];
-            room.rings()
-                .iter()
-                .flat_map(|r| (0..r.len()).map(move |i| [r[i], r[(i + 1) % r.len()]]))
-                .filter_map(|e| crate::geometry::ray_segment(at.at(), u, e[0], e[1]))
-                .reduce(f64::min)
-                .filter(|&t| t < 20.0)
-                .unwrap_or(f64::INFINITY)
-        };
-        let scan = turn(720, cast);
+        let scan = exact_scan(&room, &at);
         (room, scan, at)
     }
 

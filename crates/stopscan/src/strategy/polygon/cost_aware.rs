@@ -606,9 +606,7 @@ impl CostAware {
     /// robot stands, the trip went back through every viewpoint between (on depot, raw scans,
     /// seed 2: 37.7 m for a hop of 2 m).
     fn road_then_tree(&self, roads: &Roads, cur: usize, t: &Target) -> Option<Vec<Point>> {
-        let (mut tree, _) = self.known.route(cur, t.base());
-        tree.extend_from_slice(&t.via);
-        tree.push(t.at);
+        let tree = self.known.tree_route(cur, t);
         (0..tree.len() - 1).rev().find_map(|j| {
             let mut pts = self.road_to(roads, tree[j])?;
             pts.extend_from_slice(&tree[j + 1..]);

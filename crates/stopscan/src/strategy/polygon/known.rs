@@ -1374,9 +1374,7 @@ impl Known {
     /// between them), keeping the footprint's clearance from its boundary. So every move still
     /// lies in space seen free around the robot.
     pub(super) fn go_shortcut(&mut self, from: usize, target: Target) -> Action<Point> {
-        let (mut pts, _) = self.route(from, target.base());
-        pts.extend_from_slice(&target.via);
-        pts.push(target.at);
+        let pts = self.tree_route(from, &target);
         // The robot's position, then the waypoints, each with the view whose viewpoint it is.
         let mut all = vec![self.views[from].at];
         all.extend_from_slice(&pts);
@@ -1411,6 +1409,15 @@ impl Known {
         self.trip.set_route(waypoints);
         self.pending = Some(target);
         self.next_move()
+    }
+
+    /// The waypoints of the tree of moves from view `from`'s viewpoint to `target`: back and
+    /// down the tree to the view its trip starts from, then through its `via` to it.
+    pub(super) fn tree_route(&self, from: usize, target: &Target) -> Vec<Point> {
+        let (mut pts, _) = self.route(from, target.base());
+        pts.extend_from_slice(&target.via);
+        pts.push(target.at);
+        pts
     }
 
     /// Whether the straight move from `a` to `b` keeps the clearance `c` from the boundary of
