@@ -180,6 +180,9 @@ fn sensor_rows(t: &mut Table, sensor: &SensorInfo) {
     if let Some(n) = sensor.windows_into_walled_pockets {
         t.row(vec!["window parts into small pockets behind walls".into(), n.to_string()]);
     }
+    if let Some(n) = sensor.windows_as_gaps_in_a_wall {
+        t.row(vec!["windows read as gaps in a wall seen at a slant".into(), n.to_string()]);
+    }
     if let Some(n) = sensor.scans_where_stuck {
         t.row(vec!["scans where the robot was stuck".into(), n.to_string()]);
     }

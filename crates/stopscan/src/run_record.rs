@@ -100,6 +100,10 @@ pub struct SensorInfo {
     /// right behind them (raw scans only, every window strategy; absent: none).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub windows_into_walled_pockets: Option<usize>,
+    /// Windows of raw scans read as the wall they are a gap in: the walls on either side lie
+    /// on one line, seen at 30° or less (absent: none).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub windows_as_gaps_in_a_wall: Option<usize>,
     /// Scans taken where the robot was stuck, its moves and the way back having failed: each
     /// places it again to plan on from (absent: none).
     #[serde(default, skip_serializing_if = "Option::is_none")]
@@ -137,6 +141,7 @@ impl SensorInfo {
                 .then_some(skipped.looked_from),
             windows_into_walled_pockets: (skipped.walled_pocket > 0)
                 .then_some(skipped.walled_pocket),
+            windows_as_gaps_in_a_wall: (skipped.wall_gap > 0).then_some(skipped.wall_gap),
             scans_where_stuck: (skipped.stuck_scans > 0).then_some(skipped.stuck_scans),
             scans_to_place_again: (skipped.placed_again_scans > 0)
                 .then_some(skipped.placed_again_scans),

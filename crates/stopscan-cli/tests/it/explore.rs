@@ -482,11 +482,21 @@ fn slivers_in_front_of_walls_seen_are_closed(strategy: &str, seed: &str) {
         .find(|l| l.starts_with("window parts into small pockets behind walls"))
         .unwrap_or_else(|| panic!("{text}"));
     assert_eq!(row.split_whitespace().last(), Some(n.to_string().as_str()), "{text}");
+    // Gaps in a wall seen at a slant, read as the wall: counted in the record and the table.
+    let gaps = r["sensor"]["windows_as_gaps_in_a_wall"].as_u64().unwrap_or(0);
+    assert!(gaps >= 1, "{}", r["sensor"]);
+    let row = text
+        .lines()
+        .find(|l| l.starts_with("windows read as gaps in a wall seen at a slant"))
+        .unwrap_or_else(|| panic!("{text}"));
+    assert_eq!(row.split_whitespace().last(), Some(gaps.to_string().as_str()), "{text}");
     assert!(f(&r["robot"], "coverage_of_reachable") > 0.99, "{}", r["robot"]);
-    // With an exact sensor the rule is off (such pockets are real spaces there).
+    // With an exact sensor both rules are off (such pockets are real spaces there, and its
+    // walls have no gaps).
     let (_, r) = run(&["--range", "20"]);
     assert!(r["sensor"]["windows_into_small_pockets"].is_u64(), "{}", r["sensor"]);
     assert!(r["sensor"].get("windows_into_walled_pockets").is_none(), "{}", r["sensor"]);
+    assert!(r["sensor"].get("windows_as_gaps_in_a_wall").is_none(), "{}", r["sensor"]);
 }
 
 /// The depot fixture, and where a run's record goes in a fresh directory named `name`.

@@ -298,6 +298,10 @@ pub struct Skipped {
     /// right behind them (raw scans, on a raster of the views).
     #[serde(default)]
     pub walled_pocket: usize,
+    /// Windows of raw scans that are gaps in one wall seen at a slant (the walls on either
+    /// side lie on one line, seen at 30° or less), read as that wall.
+    #[serde(default)]
+    pub wall_gap: usize,
     /// Scans taken where the robot was stuck: its moves failed, and so did the way back
     /// (odometry's drift can put the robot against a wall it believes it is clear of). The
     /// scan places it again, and the strategy plans on from there.
@@ -643,6 +647,14 @@ impl Known {
                     {
                         skipped.below_rule += 1;
                         skipped.below_rule_length += len;
+                        covered.push([0.0, 1.0]);
+                    }
+                    // On raw scans, a gap in one wall line seen at a slant is that wall.
+                    if covered.is_empty()
+                        && sensor.wall_tolerance > 0.0
+                        && gap_in_a_wall(&obs.region.boundary, piece, at, sensor.wall_tolerance)
+                    {
+                        skipped.wall_gap += 1;
                         covered.push([0.0, 1.0]);
                     }
                     let range_frontier = matches!(b, BoundaryPiece::Frontier { .. });
@@ -1694,6 +1706,64 @@ fn below_rule(sensor: &Sensor, at: Point, p: Point, q: Point) -> Option<f64> {
     (len < sensor.min_window_at(d(p).min(d(q)))).then_some(len)
 }
 
+/// How far from each other's lines the walls on either side of a window may lie for the
+/// window to be a gap in one wall ([`gap_in_a_wall`]), in multiples of the sensor's
+/// `wall_tolerance` (0.07 m at σ = 0.02 m: 0.14 m). Lines fitted at three σ to a wall seen at
+/// a slant from 10 to 20 m, where the returns lie a metre or more apart, tilt by a few
+/// centimetres over a gap: at one tolerance (0.07 m), a gap of 0.8 m in a shelf's face seen
+/// from 12 m had its far wall 7.4 cm off the near wall's line, and stayed a window.
+const WALL_GAP_LINE: f64 = 2.0;
+
+/// The shortest wall on either side of a gap that sets the line the gap must lie on, metres.
+const WALL_GAP_SIDE: f64 = 0.2;
+
+/// The steepest slant at which a gap in a wall line is read as that wall: the sine of the
+/// angle between the wall and the sight line to the gap's middle (30°).
+const WALL_GAP_SLANT: f64 = 0.5;
+
+/// Whether window piece `i` of a raw scan's region seen from `at` is a gap in one wall seen at
+/// a slant ([`Skipped::wall_gap`]): the pieces on either side of it are walls (lines fitted to
+/// returns) of at least [`WALL_GAP_SIDE`], each wall's ends lie within [`WALL_GAP_LINE`] ×
+/// `tol` of the other's line, and the sight line to the gap's middle meets that wall at no
+/// more than 30°.
+///
+/// A wall seen at a slant from far away comes back as returns a metre or more apart, and
+/// reading the scan leaves the gaps longer than the shortest window worth a trip as windows
+/// (a door no beam went through may hide there); the ends of the runs, projected along their
+/// beams onto lines fitted at three σ that run nearly parallel to the beams, move along the
+/// wall by as much again. A door the beams entered does not look like this: they return
+/// from the room behind, off the wall's line, so the windows beside the door end off that
+/// line. Only a door no beam entered can hide in such a gap, as in a gap the reading bridges;
+/// another scan that sees the wall there closes the gap the same way
+/// ([`Sensor::cover_band`]). On the warehouse, the scans at the end of raw runs that went to
+/// such gaps, with no other scan near, saw nothing new.
+fn gap_in_a_wall(pieces: &[BoundaryPiece], i: usize, at: Point, tol: f64) -> bool {
+    let n = pieces.len();
+    let (
+        BoundaryPiece::Wall { from: a, to: p },
+        BoundaryPiece::Window { from, to, .. },
+        BoundaryPiece::Wall { from: q, to: b },
+    ) = (pieces[(i + n - 1) % n], pieces[i], pieces[(i + 1) % n])
+    else {
+        return false;
+    };
+    let len = |u: Point, v: Point| (v[0] - u[0]).hypot(v[1] - u[1]);
+    if from != p || to != q || len(a, p) < WALL_GAP_SIDE || len(q, b) < WALL_GAP_SIDE {
+        return false;
+    }
+    // The distance of `x` from the line through `u` and `v` (not the same point: the walls
+    // are longer than WALL_GAP_SIDE).
+    let off = |u: Point, v: Point, x: Point| {
+        ((v[0] - u[0]) * (x[1] - u[1]) - (v[1] - u[1]) * (x[0] - u[0])).abs() / len(u, v)
+    };
+    let tol = WALL_GAP_LINE * tol;
+    let on_line = [off(a, p, q), off(a, p, b), off(q, b, a), off(q, b, p)];
+    let middle = [f64::midpoint(p[0], q[0]), f64::midpoint(p[1], q[1])];
+    on_line.iter().all(|&d| d <= tol)
+        && len(a, b) > 0.0
+        && off(a, b, at) <= WALL_GAP_SLANT * len(at, middle)
+}
+
 /// A point on a window: the view, the window's index among its windows, and the parameter
 /// along it (0 at `from`, 1 at `to`).
 type WindowAt = (usize, usize, f64);
@@ -2055,6 +2125,52 @@ mod tests {
     /// Whether each of [`bottom_gaps`] is still open.
     fn bottom_gaps_open(k: &mut Known) -> Vec<bool> {
         bottom_gaps(k).into_iter().map(|i| k.window_target(0, i).is_some()).collect()
+    }
+
+    /// A hall 18 × 4 m seen as from raw scans (wall tolerance 0.07 m, windows under 0.4 m not
+    /// worth a trip) from `at`: its bottom wall read as a wall to x = 9, a gap to x = 10,
+    /// and a wall from `(10, far)` to `(10 + side, far)` and on to `(18, far)`. Whether the
+    /// gap is open after the scan, and how many windows were read as gaps in a wall.
+    fn wall_gap_open(at: Point, far: f64, side: f64) -> (bool, usize) {
+        let sensor = Sensor { min_window: 0.4, wall_tolerance: 0.07, ..Sensor::default() };
+        let mut k = Known::for_robot(&RobotSetup {
+            footprint: Footprint::disc(0.2).unwrap(),
+            sensor,
+            ..RobotSetup::default()
+        });
+        let (wall, gap) = (true, false);
+        k.add(&raw_region(
+            at,
+            &[
+                ([0.0, 0.0], wall),
+                ([9.0, 0.0], gap),
+                ([10.0, far], wall),
+                ([10.0 + side, far], wall),
+                ([18.0, far], wall),
+                ([18.0, 4.0], wall),
+                ([0.0, 4.0], wall),
+            ],
+        ));
+        let w = (0..k.views[0].windows.len()).find(|&i| k.views[0].windows[i].from == [9.0, 0.0]);
+        (k.window_target(0, w.unwrap()).is_some(), k.skipped.wall_gap)
+    }
+
+    #[test]
+    fn a_gap_in_one_wall_line_seen_at_a_slant_is_that_wall() {
+        // From (1, 2) the gap's middle (9.5, 0) is seen at asin(2 / 8.73) = 13°: the walls on
+        // either side on one line, within twice the wall tolerance (0.14 m), close it.
+        let slant = [1.0, 2.0];
+        assert_eq!(wall_gap_open(slant, 0.0, 7.0), (false, 1));
+        assert_eq!(wall_gap_open(slant, -0.13, 7.0), (false, 1));
+        // The far wall 0.15 m off the near one's line: a step, or a door's jamb with the room
+        // behind; the window stays.
+        assert_eq!(wall_gap_open(slant, -0.15, 7.0), (true, 0));
+        assert_eq!(wall_gap_open(slant, 0.5, 7.0), (true, 0));
+        // Seen at more than 30° (from (5, 3): 34°; from (4, 3), 29°), or with a side too short
+        // to set a line (0.1 m: a return or two), it stays a window.
+        assert_eq!(wall_gap_open([5.0, 3.0], 0.0, 7.0), (true, 0));
+        assert_eq!(wall_gap_open([4.0, 3.0], 0.0, 7.0), (false, 1));
+        assert_eq!(wall_gap_open(slant, 0.0, 0.1), (true, 0));
     }
 
     #[test]
