@@ -6,8 +6,10 @@ use std::collections::{BTreeSet, VecDeque};
 
 use serde::{Deserialize, Serialize};
 
+use super::known;
 use super::trip::{Next, Trip};
 use super::{PolygonFeedback, PolygonStrategy};
+use crate::algorithm::visibility::BoundaryPiece;
 use crate::kernel::{Point, magnitude};
 use crate::protocol::Action;
 use crate::protocol::polygon::{Footprint, PolygonObservation, RobotSetup};
@@ -167,6 +169,14 @@ pub enum InvalidExploreLiteParams {
 ///   were, or else, once until the next scan at a frontier, after a scan where the robot
 ///   stands. Every try ends in a scan or leaves the blacklist as it was, so the exploration
 ///   ends. With an exact sensor no move fails, and nothing changes.
+/// - **Gaps in a wall seen at a slant** (raw scans). A wall seen from far away at a slant
+///   returns beams a metre or more apart, and a costmap leaves the cells between its hits
+///   unmarked, so that the unknown space behind forms frontiers along the wall. Here a window
+///   of a scan between two walls on one line, seen at 30° or less, is rasterised as that
+///   wall ([`known::gap_in_a_wall`], the rule the window strategies read it by): on the
+///   warehouse (raw scans, seeds 1 to 40) 1,320 → 1,276 scans, runs beyond 1.25 × the exact
+///   run's 20 → 17, no run's coverage lower. Beams that entered a door end off the wall's
+///   line, so a door they saw stays a frontier.
 /// - **`orientation_scale`** does nothing in explore_lite either; it is not modelled.
 /// - **Cost and centroid.** explore_lite multiplies the distance (already in metres) by the
 ///   resolution once more; here both terms are in metres, `potential_scale · distance −
@@ -190,6 +200,11 @@ pub struct ExploreLite {
     /// keeps 99% of the clearance it has.
     #[serde(default)]
     relaxed: bool,
+    /// The sensor's wall tolerance on raw scans (0 for the exact sensor): a window of a scan
+    /// that is a gap in one wall seen at a slant is rasterised as that wall, as the window
+    /// strategies read it ([`known::gap_in_a_wall`]).
+    #[serde(default)]
+    wall_tolerance: f64,
     raster: Raster,
     /// The centroids of blacklisted frontiers.
     blacklist: Vec<Point>,
@@ -267,6 +282,7 @@ impl ExploreLite {
             params,
             footprint: setup.footprint.clone(),
             relaxed: setup.sensor.wall_tolerance > 0.0,
+            wall_tolerance: setup.sensor.wall_tolerance,
             raster: Raster::new(params.resolution),
             blacklist: Vec::new(),
             scanned: BTreeSet::new(),
@@ -356,7 +372,8 @@ impl ExploreLite {
         let k_before = self.inflation();
         self.raster.scale = self.raster.scale.max(magnitude(&obs.region.polygon)).max(1.0);
         let k = self.inflation();
-        let changed = self.raster.add_view(&obs.region.polygon, &obs.region.boundary, obs.at);
+        let pieces = walls_for_gaps(&obs.region.boundary, obs.at, self.wall_tolerance);
+        let changed = self.raster.add_view(&obs.region.polygon, &pieces, obs.at);
         if k == k_before {
             if let Some((lo, hi)) = changed {
                 self.raster.update_safe(lo, hi, k);
@@ -688,6 +705,23 @@ impl Raster {
         }
         best.map(|b| b.1)
     }
+}
+
+/// A scan's boundary as the raster takes it: on raw scans (`tol` above 0), each window that
+/// is a gap in one wall seen at a slant ([`known::gap_in_a_wall`]) becomes that wall, so
+/// that the cells beyond it are no frontier, as the window strategies close it.
+fn walls_for_gaps(pieces: &[BoundaryPiece], at: Point, tol: f64) -> Vec<BoundaryPiece> {
+    let mut out = pieces.to_vec();
+    if tol > 0.0 {
+        for (i, piece) in out.iter_mut().enumerate() {
+            if let BoundaryPiece::Window { from, to, .. } = *piece
+                && known::gap_in_a_wall(pieces, i, at, tol)
+            {
+                *piece = BoundaryPiece::Wall { from, to };
+            }
+        }
+    }
+    out
 }
 
 #[cfg(test)]
@@ -1271,6 +1305,36 @@ mod tests {
         w.region.viewpoint = at;
         let next = s.act(&PolygonFeedback::Scanned(w));
         assert!(matches!(next, Action::MoveTo { .. }), "{next:?}");
+    }
+
+    #[test]
+    fn a_gap_in_one_wall_seen_at_a_slant_is_no_frontier_on_raw_scans() {
+        // A hall 4 × 1 m seen from (0.3, 0.8) as from a raw scan: its bottom wall has a gap
+        // from x = 2 to 2.8 on its line, seen at asin(0.77 / 2.24) = 20°.
+        let at = [0.3, 0.8];
+        let wall = |from: Point, to: Point| BoundaryPiece::Wall { from, to };
+        let (a, b) = ([2.0, 0.03], [2.8, 0.03]);
+        let polygon = vec![[0.03, 0.03], a, b, [3.97, 0.03], [3.97, 0.97], [0.03, 0.97]];
+        let boundary = vec![
+            wall([0.03, 0.03], a),
+            BoundaryPiece::Window { from: a, to: b, reflex: a, far: b },
+            wall(b, [3.97, 0.03]),
+            wall([3.97, 0.03], [3.97, 0.97]),
+            wall([3.97, 0.97], [0.03, 0.97]),
+            wall([0.03, 0.97], [0.03, 0.03]),
+        ];
+        let obs =
+            PolygonObservation::new(at, VisibilityRegion { viewpoint: at, polygon, boundary });
+        let frontiers = |wall_tolerance: f64| {
+            let sensor = crate::protocol::polygon::Sensor { wall_tolerance, ..Default::default() };
+            let mut s = ExploreLite::for_robot(&RobotSetup { sensor, ..RobotSetup::default() });
+            s.add(&obs);
+            s.raster.frontiers(at, &s.params).len()
+        };
+        // Read as a window (the exact sensor's rule), its cells form a frontier; on raw scans
+        // it is the wall, as the window strategies read it.
+        assert_eq!(frontiers(0.0), 1);
+        assert_eq!(frontiers(0.07), 0);
     }
 
     #[test]

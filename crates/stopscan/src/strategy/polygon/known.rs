@@ -1737,7 +1737,7 @@ const WALL_GAP_SLANT: f64 = 0.5;
 /// another scan that sees the wall there closes the gap the same way
 /// ([`Sensor::cover_band`]). On the warehouse, the scans at the end of raw runs that went to
 /// such gaps, with no other scan near, saw nothing new.
-fn gap_in_a_wall(pieces: &[BoundaryPiece], i: usize, at: Point, tol: f64) -> bool {
+pub(super) fn gap_in_a_wall(pieces: &[BoundaryPiece], i: usize, at: Point, tol: f64) -> bool {
     let n = pieces.len();
     let (
         BoundaryPiece::Wall { from: a, to: p },
