@@ -173,9 +173,9 @@ pub enum InvalidExploreLiteParams {
 ///   returns beams a metre or more apart, and a costmap leaves the cells between its hits
 ///   unmarked, so that the unknown space behind forms frontiers along the wall. Here a window
 ///   of a scan between two walls on one line, seen at 30° or less, is rasterised as that
-///   wall ([`known::gap_in_a_wall`], the rule the window strategies read it by): on the
-///   warehouse (raw scans, seeds 1 to 40) 1,320 → 1,276 scans, runs beyond 1.25 × the exact
-///   run's 20 → 17, no run's coverage lower. Beams that entered a door end off the wall's
+///   wall (the rule the window strategies read it by): on the warehouse (raw scans, seeds 1
+///   to 40) 1,320 → 1,276 scans, runs beyond 1.25 × the exact run's 20 → 17, no run's
+///   coverage lower. Beams that entered a door end off the wall's
 ///   line, so a door they saw stays a frontier.
 /// - **`orientation_scale`** does nothing in explore_lite either; it is not modelled.
 /// - **Cost and centroid.** explore_lite multiplies the distance (already in metres) by the
