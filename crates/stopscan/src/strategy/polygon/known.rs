@@ -12,7 +12,9 @@ use crate::kernel::{
     Point, RingSide, magnitude, on_segment, orient_sign, ring_side, rounding, segments_intersect,
 };
 use crate::protocol::Action;
-use crate::protocol::polygon::{Footprint, PolygonObservation, RobotSetup, Sensor};
+use crate::protocol::polygon::{
+    Footprint, PolygonObservation, RobotSetup, Sensor, WALL_GAP_LINE, WALL_GAP_SIDE, WALL_GAP_SLANT,
+};
 
 use super::PolygonFeedback;
 use super::approach::{Approach, holds};
@@ -1705,21 +1707,6 @@ fn below_rule(sensor: &Sensor, at: Point, p: Point, q: Point) -> Option<f64> {
     let len = (q[0] - p[0]).hypot(q[1] - p[1]);
     (len < sensor.min_window_at(d(p).min(d(q)))).then_some(len)
 }
-
-/// How far from each other's lines the walls on either side of a window may lie for the
-/// window to be a gap in one wall ([`gap_in_a_wall`]), in multiples of the sensor's
-/// `wall_tolerance` (0.07 m at σ = 0.02 m: 0.14 m). Lines fitted at three σ to a wall seen at
-/// a slant from 10 to 20 m, where the returns lie a metre or more apart, tilt by a few
-/// centimetres over a gap: at one tolerance (0.07 m), a gap of 0.8 m in a shelf's face seen
-/// from 12 m had its far wall 7.4 cm off the near wall's line, and stayed a window.
-const WALL_GAP_LINE: f64 = 2.0;
-
-/// The shortest wall on either side of a gap that sets the line the gap must lie on, metres.
-const WALL_GAP_SIDE: f64 = 0.2;
-
-/// The steepest slant at which a gap in a wall line is read as that wall: the sine of the
-/// angle between the wall and the sight line to the gap's middle (30°).
-const WALL_GAP_SLANT: f64 = 0.5;
 
 /// Whether window piece `i` of a raw scan's region seen from `at` is a gap in one wall seen at
 /// a slant ([`Skipped::wall_gap`]): the pieces on either side of it are walls (lines fitted to
