@@ -155,7 +155,8 @@ fn diagonal_pinches_do_not_make_touching_rings() {
     );
 }
 
-/// The ROS maps vendored in fixtures/ (navigation2's turtlebot3_world and depot, Apache-2.0).
+/// The ROS maps vendored in fixtures/ (navigation2's turtlebot3_world, depot and warehouse,
+/// Apache-2.0).
 #[test]
 fn every_vendored_ros_map_loads() {
     let root = PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("../../fixtures/ros-maps");
