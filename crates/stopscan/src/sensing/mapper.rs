@@ -66,7 +66,7 @@ pub const RELAY_MARGIN: f64 = 2.0 * icp::PREDICTION_MARGIN;
 /// ([`Mapper::relay`]). A relay's alignment may rest on one wall the robot stands beside:
 /// on the warehouse (`range_limited`, seed 11) a relay 17 m from the start, believed
 /// 0.35 m from the end of a wall that alone held it across the aisle, truly stood level with
-/// the wall's end, saw it edge-on, and was placed 0.4 m off along the aisle; the stops after
+/// the wall's end, saw it edge-on, and was placed 0.4 m off across the aisle; the stops after
 /// aligned to its walls. On the 720 raw-scan runs of the README's grid, runs with a stop
 /// beyond 0.1 m fell from 78 to 51 and beyond 0.5 m from 6 to 1 (1 σ: 20 and 2 on the
 /// warehouse's `range_limited` runs against 13 and 0 at 2 σ; 3 σ: more relays, 56 and 2

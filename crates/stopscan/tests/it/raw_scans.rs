@@ -109,7 +109,7 @@ fn the_lidar_truth_and_the_belief_start_together() {
 /// trip runs 17 m from the start; its relay was put where the scan was predicted to be placed
 /// from the believed pose, 0.35 m beside the end of the one wall that held it across the
 /// aisle. The robot truly stood level with the wall's end and saw it edge-on: that relay was
-/// placed 0.2 to 0.4 m off along the aisle, and the stops after it aligned to its walls.
+/// placed 0.2 to 0.4 m off across the aisle, and the stops after it aligned to its walls.
 #[test]
 fn a_relay_stands_where_its_scan_is_placed_wherever_odometry_put_the_robot() {
     let path = std::path::PathBuf::from(env!("CARGO_MANIFEST_DIR"))
