@@ -271,14 +271,15 @@ impl Mapper {
             let mut t = l;
             while t > 0.0 {
                 t = (t - RELAY_STEP).max(0.0);
-                if left - l + t < RELAY_GAP {
+                // How far along the trip the place lies.
+                let along = left - l + t;
+                if along < RELAY_GAP {
                     return None;
                 }
                 let p =
                     [w[0][0] + (w[1][0] - w[0][0]) * t / l, w[0][1] + (w[1][1] - w[0][1]) * t / l];
                 // How far off odometry may put the robot there, one standard deviation.
-                let before: f64 = lengths[..k].iter().sum();
-                let spread = self.unsure_after(since_scan + before + t);
+                let spread = self.unsure_after(since_scan + along);
                 if self.would_place_by(p, beams, range, RELAY_MARGIN)
                     && self.would_place_around(p, RELAY_SPREAD * spread, beams, range)
                 {
