@@ -3,7 +3,8 @@
 //! - `domain`: [`Domain`], validated once ([`InvalidEnvironment`]), and where a point lies
 //!   ([`Location`]);
 //! - `frame`: [`Frame`], the exact shift between the input's coordinates and the local frame;
-//! - here: [`signed_area_of`], [`segment_distance`] and [`segments_distance`].
+//! - here: [`signed_area_of`], [`segment_distance`], [`segments_distance`] and
+//!   [`fit_line`].
 
 mod domain;
 mod frame;
@@ -77,6 +78,24 @@ pub fn segments_distance(a: Point, b: Point, c: Point, d: Point) -> f64 {
         .min(segment_distance(b, c, d))
         .min(segment_distance(c, a, b))
         .min(segment_distance(d, a, b))
+}
+
+/// The line through `points` by orthogonal regression (total least squares): their centroid
+/// and the unit direction of most spread about it, at angle ½·atan2(2sxy, sxx − syy) (the x
+/// axis when the points all coincide). Floating point; `points` must not be empty.
+pub fn fit_line(points: &[Point]) -> (Point, Point) {
+    let n = points.len() as f64;
+    let (cx, cy) = points.iter().fold((0.0, 0.0), |s, p| (s.0 + p[0], s.1 + p[1]));
+    let (cx, cy) = (cx / n, cy / n);
+    let (mut sxx, mut syy, mut sxy) = (0.0, 0.0, 0.0);
+    for p in points {
+        let (dx, dy) = (p[0] - cx, p[1] - cy);
+        sxx += dx * dx;
+        syy += dy * dy;
+        sxy += dx * dy;
+    }
+    let a = 0.5 * (2.0 * sxy).atan2(sxx - syy);
+    ([cx, cy], [a.cos(), a.sin()])
 }
 
 /// Signed area of a ring (positive when counter-clockwise).

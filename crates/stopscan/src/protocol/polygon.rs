@@ -277,6 +277,13 @@ pub const PLACEMENT_CAP: f64 = 0.3;
 /// from 12 m had its far wall 7.4 cm off the near wall's line, and stayed a window.
 pub const WALL_GAP_LINE: f64 = 2.0;
 
+/// How far a wall beside a gap may turn from the line fitted through the gap and the returns
+/// beside it (the window strategies' `gap_in_a_wall`) over its length, beyond the wall
+/// tolerance: the sine of 2°. Two parallel walls 0.13 m apart, a metre or more long, tilt
+/// that line by half a degree; a box's face 1 m long and the wall behind it across an
+/// occlusion seen from 10 m, by 6°.
+pub const WALL_GAP_TILT: f64 = 0.035;
+
 /// The shortest wall on either side of a gap that sets the line the gap must lie on, metres.
 pub const WALL_GAP_SIDE: f64 = 0.2;
 
@@ -390,11 +397,18 @@ impl Sensor {
                 self.cover_band(),
                 self.wall_tolerance
             ) + &format!(
-                "; a window of a scan between two of its walls (each at least {WALL_GAP_SIDE} m) \
-                 that lie on one line, each within {} m of the other's, seen at {}° or less, is \
-                 that wall (a gap between returns on a wall seen at a slant)",
-                WALL_GAP_LINE * self.wall_tolerance,
-                WALL_GAP_SLANT.asin().to_degrees().round()
+                "; a window of a scan is that wall (a gap between returns on a wall seen at a \
+                 slant) when its ends and the next return beyond each (a single return, or the \
+                 far end of a wall of at least {WALL_GAP_SIDE} m that runs along the line: its \
+                 ends within {} m of each other across it, or {}° over its length) lie within {} \
+                 m of the line fitted to the four, seen \
+                 at {}° or less (explore_lite's raster: only a window between two such walls, \
+                 each within {} m of the other's line)",
+                self.wall_tolerance,
+                WALL_GAP_TILT.asin().to_degrees().round(),
+                0.5 * WALL_GAP_LINE * self.wall_tolerance,
+                WALL_GAP_SLANT.asin().to_degrees().round(),
+                WALL_GAP_LINE * self.wall_tolerance
             )
         } else {
             windows
@@ -479,12 +493,15 @@ mod tests {
         let raw = Sensor { min_window: 0.4, wall_tolerance: 0.07, ..Sensor::default() };
         assert_eq!(raw.cover_band(), 0.07 + POSE_ALLOWANCE);
         assert!(raw.rule().contains("within 0.27 m is closed"), "{}", raw.rule());
-        // And the gaps in a wall seen at a slant: twice the tolerance, 30°.
-        assert!(
-            raw.rule().contains("each within 0.14 m of the other's, seen at 30°"),
-            "{}",
-            raw.rule()
-        );
+        // And the gaps in a wall seen at a slant: the tolerance from the fitted line, 2° of
+        // a wall's turn, 30°; explore_lite's raster, twice the tolerance between two walls.
+        for part in [
+            "within 0.07 m of each other across it, or 2° over its length",
+            "lie within 0.07 m of the line fitted to the four, seen at 30° or less",
+            "each within 0.14 m of the other's line",
+        ] {
+            assert!(raw.rule().contains(part), "{part}: {}", raw.rule());
+        }
         // Each scan's share: 0.1 m, or three times its placement spread, up to 0.3 m.
         assert_eq!((PLACEMENT_SIGMAS, PLACEMENT_CAP), (3.0, 0.3));
         let near = |a: f64, b: f64| (a - b).abs() < 1e-12;

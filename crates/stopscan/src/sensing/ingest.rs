@@ -691,20 +691,9 @@ impl Line {
 /// The least-squares line through `pts` (orthogonal regression: the normal is the direction
 /// of least spread about the centroid).
 fn fit_line(pts: &[Point]) -> Line {
-    let n = pts.len() as f64;
-    let (cx, cy) = pts.iter().fold((0.0, 0.0), |s, p| (s.0 + p[0], s.1 + p[1]));
-    let (cx, cy) = (cx / n, cy / n);
-    let (mut sxx, mut syy, mut sxy) = (0.0, 0.0, 0.0);
-    for p in pts {
-        let (dx, dy) = (p[0] - cx, p[1] - cy);
-        sxx += dx * dx;
-        syy += dy * dy;
-        sxy += dx * dy;
-    }
-    // The direction of most spread is at angle ½·atan2(2sxy, sxx − syy); the normal is across.
-    let a = 0.5 * (2.0 * sxy).atan2(sxx - syy);
-    let normal = [-a.sin(), a.cos()];
-    Line { normal, offset: normal[0] * cx + normal[1] * cy }
+    let (c, d) = crate::geometry::fit_line(pts);
+    let normal = [-d[1], d[0]];
+    Line { normal, offset: normal[0] * c[0] + normal[1] * c[1] }
 }
 
 #[cfg(test)]

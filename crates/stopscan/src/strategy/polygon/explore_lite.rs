@@ -201,8 +201,8 @@ pub struct ExploreLite {
     #[serde(default)]
     relaxed: bool,
     /// The sensor's wall tolerance on raw scans (0 for the exact sensor): a window of a scan
-    /// that is a gap in one wall seen at a slant is rasterised as that wall, as the window
-    /// strategies read it ([`known::gap_in_a_wall`]).
+    /// that is a gap between two walls on one line seen at a slant is rasterised as that wall
+    /// ([`known::gap_between_two_walls`]).
     #[serde(default)]
     wall_tolerance: f64,
     raster: Raster,
@@ -708,14 +708,15 @@ impl Raster {
 }
 
 /// A scan's boundary as the raster takes it: on raw scans (`tol` above 0), each window that
-/// is a gap in one wall seen at a slant ([`known::gap_in_a_wall`]) becomes that wall, so
+/// is a gap between two walls on one line seen at a slant ([`known::gap_between_two_walls`])
+/// becomes that wall, so
 /// that the cells beyond it are no frontier, as the window strategies close it.
 fn walls_for_gaps(pieces: &[BoundaryPiece], at: Point, tol: f64) -> Vec<BoundaryPiece> {
     let mut out = pieces.to_vec();
     if tol > 0.0 {
         for (i, piece) in out.iter_mut().enumerate() {
             if let BoundaryPiece::Window { from, to, .. } = *piece
-                && known::gap_in_a_wall(pieces, i, at, tol)
+                && known::gap_between_two_walls(pieces, i, at, tol)
             {
                 *piece = BoundaryPiece::Wall { from, to };
             }
