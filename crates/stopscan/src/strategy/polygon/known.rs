@@ -1716,8 +1716,8 @@ fn below_rule(sensor: &Sensor, at: Point, p: Point, q: Point) -> Option<f64> {
 /// metre or more apart), the four points within half of [`WALL_GAP_LINE`] × `tol` of the
 /// line fitted to them (a step of [`WALL_GAP_LINE`] × `tol` between the two sides leaves
 /// them about that far off), each wall running along that line (its ends within `tol` of
-/// each other across it, or [`WALL_GAP_TILT`] of its length), and the sight line to the gap's middle meets that line at no
-/// more than 30°.
+/// each other across it, or [`WALL_GAP_TILT`] of its length), and the sight line to the
+/// gap's middle meets that line at no more than 30°.
 ///
 /// A wall seen at a slant from far away comes back as returns a metre or more apart, and
 /// reading the scan leaves the gaps longer than the shortest window worth a trip as windows
@@ -1785,7 +1785,7 @@ fn gap_in_a_wall(pieces: &[BoundaryPiece], i: usize, at: Point, tol: f64) -> boo
 /// gap's middle meets that wall at no more than 30°. Stricter than [`gap_in_a_wall`], as a
 /// wall in that raster stays a wall whatever later scans see: read as the window strategies
 /// read gaps, the doors along the built-in office's corridor, seen from its end, shut the
-/// rooms behind them (seed 22 saw 91% of the floor, seed 1 46%).
+/// rooms behind them, and every run on it (seeds 1 to 40) saw less than 99%, the least 48.8%.
 pub(super) fn gap_between_two_walls(
     pieces: &[BoundaryPiece],
     i: usize,
