@@ -400,10 +400,10 @@ impl Sensor {
                 "; a window of a scan is that wall (a gap between returns on a wall seen at a \
                  slant) when its ends and the next return beyond each (a single return, or the \
                  far end of a wall of at least {WALL_GAP_SIDE} m that runs along the line: its \
-                 ends within {} m of each other across it, or {}° over its length) lie within {} \
-                 m of the line fitted to the four, seen \
-                 at {}° or less (explore_lite's raster: only a window between two such walls, \
-                 each within {} m of the other's line)",
+                 ends within {} m of each other across it, or {}° over its length) lie within \
+                 {} m of the line fitted to the four, seen at {}° or less (explore_lite's \
+                 raster: only a window between two such walls, each within {} m of the \
+                 other's line)",
                 self.wall_tolerance,
                 WALL_GAP_TILT.asin().to_degrees().round(),
                 0.5 * WALL_GAP_LINE * self.wall_tolerance,

@@ -709,8 +709,8 @@ impl Raster {
 
 /// A scan's boundary as the raster takes it: on raw scans (`tol` above 0), each window that
 /// is a gap between two walls on one line seen at a slant ([`known::gap_between_two_walls`])
-/// becomes that wall, so
-/// that the cells beyond it are no frontier, as the window strategies close it.
+/// becomes that wall, so that the cells beyond it are no frontier, as the window strategies
+/// close it.
 fn walls_for_gaps(pieces: &[BoundaryPiece], at: Point, tol: f64) -> Vec<BoundaryPiece> {
     let mut out = pieces.to_vec();
     if tol > 0.0 {

@@ -1733,6 +1733,9 @@ fn below_rule(sensor: &Sensor, at: Point, p: Point, q: Point) -> Option<f64> {
 /// beside it; a later scan that sees through a gap read so still opens what lies behind.
 fn gap_in_a_wall(pieces: &[BoundaryPiece], i: usize, at: Point, tol: f64) -> bool {
     let n = pieces.len();
+    if n < 5 {
+        return false;
+    }
     let BoundaryPiece::Window { from: p, to: q, .. } = pieces[i] else { return false };
     let len = |u: Point, v: Point| (v[0] - u[0]).hypot(v[1] - u[1]);
     // The return beyond the gap's end `end` along piece `j`, the next piece beyond it being
@@ -1753,9 +1756,6 @@ fn gap_in_a_wall(pieces: &[BoundaryPiece], i: usize, at: Point, tol: f64) -> boo
             _ => None,
         }
     };
-    if n < 5 {
-        return false;
-    }
     let (Some(a), Some(b)) = (
         support((i + n - 1) % n, (i + n - 2) % n, p, true),
         support((i + 1) % n, (i + 2) % n, q, false),
