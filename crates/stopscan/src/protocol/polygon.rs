@@ -402,8 +402,9 @@ impl Sensor {
                  far end of a wall of at least {WALL_GAP_SIDE} m that runs along the line: its \
                  ends within {} m of each other across it, or {}° over its length) lie within \
                  {} m of the line fitted to the four, seen at {}° or less (explore_lite's \
-                 raster: only a window between two such walls, each within {} m of the \
-                 other's line)",
+                 raster: such a window, or one between two such walls each within {} m of \
+                 the other's line, is assumed to be that wall until a later scan holds its \
+                 cells or sees through it)",
                 self.wall_tolerance,
                 WALL_GAP_TILT.asin().to_degrees().round(),
                 0.5 * WALL_GAP_LINE * self.wall_tolerance,
@@ -494,11 +495,13 @@ mod tests {
         assert_eq!(raw.cover_band(), 0.07 + POSE_ALLOWANCE);
         assert!(raw.rule().contains("within 0.27 m is closed"), "{}", raw.rule());
         // And the gaps in a wall seen at a slant: the tolerance from the fitted line, 2° of
-        // a wall's turn, 30°; explore_lite's raster, twice the tolerance between two walls.
+        // a wall's turn, 30°; explore_lite's raster, such gaps and those between two walls
+        // (twice the tolerance), assumed until a later scan holds them or sees through.
         for part in [
             "within 0.07 m of each other across it, or 2° over its length",
             "lie within 0.07 m of the line fitted to the four, seen at 30° or less",
-            "each within 0.14 m of the other's line",
+            "each within 0.14 m of the other's line, is assumed to be that wall until a later \
+             scan",
         ] {
             assert!(raw.rule().contains(part), "{part}: {}", raw.rule());
         }

@@ -1731,7 +1731,7 @@ fn below_rule(sensor: &Sensor, at: Point, p: Point, q: Point) -> Option<f64> {
 /// such gaps, with no other scan near, saw nothing new. A chain of such gaps with single
 /// returns between them is read link by link, each link's neighbours being the windows
 /// beside it; a later scan that sees through a gap read so still opens what lies behind.
-fn gap_in_a_wall(pieces: &[BoundaryPiece], i: usize, at: Point, tol: f64) -> bool {
+pub(super) fn gap_in_a_wall(pieces: &[BoundaryPiece], i: usize, at: Point, tol: f64) -> bool {
     let n = pieces.len();
     if n < 5 {
         return false;
@@ -2289,7 +2289,8 @@ mod tests {
         let door = [[8.0, 0.0], [10.0, 0.0], [11.0, -0.5], [12.0, 0.0], [14.0, 0.0]];
         let open: Vec<bool> = chain_open(&door, true).iter().map(|&(_, o)| o).collect();
         assert_eq!(open, vec![false, true, true, true, true, false]);
-        // explore_lite's raster reads only gaps between walls: none of these.
+        // Between two walls (explore_lite's other reading, for gaps flanked by fitted walls):
+        // none of these.
         assert!(chain_open(&line, false).iter().all(|&(_, open)| open));
     }
 

@@ -779,20 +779,28 @@ impl Raster {
         (reached.len() <= most).then_some(reached.len() as f64 * self.res * self.res)
     }
 
+    /// Makes the [`ASSUMED`] cells along `a b` unknown again (a view saw through them).
+    pub(super) fn unassume(&mut self, a: Point, b: Point) {
+        self.relabel_along(a, b, ASSUMED, UNKNOWN);
+    }
+
     /// Marks the unknown cells along `a b` as [`ASSUMED`] walls.
     pub(super) fn assume_wall(&mut self, a: Point, b: Point) {
-        let eps = self.hair();
-        let res = self.res;
+        self.relabel_along(a, b, UNKNOWN, ASSUMED);
+    }
+
+    /// Gives the cells along `a b` (their supercover) in state `from` the state `to`.
+    fn relabel_along(&mut self, a: Point, b: Point, from: u8, to: u8) {
         let mut cells = Vec::new();
-        supercover(res, a, b, eps, |c| {
+        supercover(self.res, a, b, self.hair(), |c| {
             cells.push(c);
             true
         });
         for c in cells {
             if let Some(j) = self.local(c)
-                && self.cells[j] & STATE == UNKNOWN
+                && self.cells[j] & STATE == from
             {
-                self.cells[j] = (self.cells[j] & !STATE) | ASSUMED;
+                self.cells[j] = (self.cells[j] & !STATE) | to;
             }
         }
     }
