@@ -380,14 +380,16 @@ impl ExploreLite {
         let pieces = &obs.region.boundary;
         let changed = self.raster.add_view(&obs.region.polygon, pieces, obs.at);
         // Walls assumed across gaps that this view sees through are no walls; this view's own
-        // gaps in a wall are assumed to be wall.
-        for piece in pieces {
-            if let BoundaryPiece::Window { from, to, .. } = *piece {
-                self.raster.unassume(from, to);
+        // gaps in a wall are assumed to be wall. With the exact sensor nothing is assumed.
+        if self.wall_tolerance > 0.0 {
+            for piece in pieces {
+                if let BoundaryPiece::Window { from, to, .. } = *piece {
+                    self.raster.unassume(from, to);
+                }
             }
-        }
-        for (a, b) in gaps_in_walls(pieces, obs.at, self.wall_tolerance) {
-            self.raster.assume_wall(a, b);
+            for (a, b) in gaps_in_walls(pieces, obs.at, self.wall_tolerance) {
+                self.raster.assume_wall(a, b);
+            }
         }
         if k == k_before {
             if let Some((lo, hi)) = changed {

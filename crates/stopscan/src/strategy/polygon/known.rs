@@ -1782,10 +1782,12 @@ pub(super) fn gap_in_a_wall(pieces: &[BoundaryPiece], i: usize, at: Point, tol: 
 /// on one line seen at a slant, as `explore_lite`'s raster reads it: the pieces on either
 /// side of it are walls (lines fitted to returns) of at least [`WALL_GAP_SIDE`], each wall's
 /// ends lie within [`WALL_GAP_LINE`] × `tol` of the other's line, and the sight line to the
-/// gap's middle meets that wall at no more than 30°. Stricter than [`gap_in_a_wall`], as a
-/// wall in that raster stays a wall whatever later scans see: read as the window strategies
-/// read gaps, the doors along the built-in office's corridor, seen from its end, shut the
-/// rooms behind them, and every run on it (seeds 1 to 40) saw less than 99%, the least 48.8%.
+/// gap's middle meets that wall at no more than 30°. It reads some gaps [`gap_in_a_wall`]
+/// does not (a wall's far end off the fitted line by up to twice the tolerance), and
+/// `explore_lite` assumes either reading to be wall until a later scan holds or sees through
+/// the gap's cells. (When that raster kept such a wall for good, reading gaps as the window
+/// strategies do shut the doors along the built-in office's corridor, seen from its end, and
+/// every run on it, seeds 1 to 40, saw less than 99%, the least 48.8%.)
 pub(super) fn gap_between_two_walls(
     pieces: &[BoundaryPiece],
     i: usize,
