@@ -266,6 +266,10 @@ fn bench_scans(a: &BenchArgs, g: &Global) -> anyhow::Result<()> {
     if n > 100_000 {
         bail!("--n (scan pairs) must be at most 100000 for scans, got {n}");
     }
+    let within = a.pairs_within;
+    if !(within.is_finite() && within > 0.0 && within <= 1000.0) {
+        bail!("--pairs-within must be a distance in metres above 0 and at most 1000, got {within}");
+    }
     let (name, domain) = if let Some(path) = &a.env {
         let env = stopscan::io::read_environment(path)?;
         (path.display().to_string(), env.domain)
@@ -281,7 +285,7 @@ fn bench_scans(a: &BenchArgs, g: &Global) -> anyhow::Result<()> {
         &domain,
         &lidar,
         n,
-        3.0,
+        within,
         0.3,
         10f64.to_radians(),
         g.seed,
@@ -290,7 +294,7 @@ fn bench_scans(a: &BenchArgs, g: &Global) -> anyhow::Result<()> {
     bar.finish_and_clear();
     let value = json!({
         "name": "raw-scans", "environment": name, "lidar": lidar, "seed": g.seed,
-        "pairs_within_m": 3.0, "initial_error": {"shift_m": 0.3, "turn_deg": 10.0},
+        "pairs_within_m": within, "initial_error": {"shift_m": 0.3, "turn_deg": 10.0},
         "converged_when": {"shift_m": stopscan::experiment::scans::CONVERGED_SHIFT, "turn_deg": 1.0},
         "result": r, "seconds": t.elapsed().as_secs_f64(),
     });

@@ -783,4 +783,9 @@ pub(crate) struct BenchArgs {
     /// `bench floors`: write the mission-time chart (SVG and PNG beside it).
     #[arg(long)]
     pub(crate) chart: Option<PathBuf>,
+    /// `bench scans`: the second scan of a pair is taken within this many metres of the
+    /// first (in sight of it); long drives between stops are where walls seen from afar
+    /// must place a scan.
+    #[arg(long, value_name = "M", allow_negative_numbers = true, default_value_t = 3.0)]
+    pub(crate) pairs_within: f64,
 }

@@ -63,3 +63,22 @@ fn bench_floors_on_small_inputs() {
         &["--data", "/no/such/folder", "no such folder"],
     );
 }
+
+/// `bench scans`: pairs as far apart as asked, the errors after alignment, a bad distance
+/// refused.
+#[test]
+fn bench_scans_takes_pairs_as_far_apart_as_asked() {
+    let v = json(&["bench", "scans", "--n", "12", "--pairs-within", "6"]);
+    assert_eq!(v["pairs_within_m"], 6.0);
+    let r = &v["result"];
+    assert_eq!(r["trials"], 12);
+    for k in ["position_error", "heading_error"] {
+        let (median, p95) = (f(r, &format!("{k}_median")), f(r, &format!("{k}_p95")));
+        assert!(0.0 <= median && median <= p95, "{k}: {median} {p95}");
+    }
+    // Converged pairs are within 1°: the median pair's heading error is below it.
+    assert!(f(r, "heading_error_median") < 1f64.to_radians());
+    for bad in ["0", "-1", "nan", "1e9"] {
+        common::fails(&["bench", "scans", "--n", "2", "--pairs-within", bad], &["--pairs-within"]);
+    }
+}

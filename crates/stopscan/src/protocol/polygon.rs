@@ -401,8 +401,10 @@ impl Sensor {
                  slant) when its ends and the next return beyond each (a single return, or the \
                  far end of a wall of at least {WALL_GAP_SIDE} m that runs along the line: its \
                  ends within {} m of each other across it, or {}° over its length) lie within \
-                 {} m of the line fitted to the four, seen at {}° or less (explore_lite's \
-                 raster: such a window, or one between two such walls each within {} m of \
+                 {} m of the line fitted to the four, seen at {}° or less; where the beam \
+                 beyond one end (not both) met nothing within the range, when the other three \
+                 lie so and that beam ends short of the line, or within the wall tolerance \
+                 beyond it (explore_lite's raster: such a window, or one between two such walls each within {} m of \
                  the other's line, is assumed to be that wall until a later scan holds its \
                  cells or sees through it)",
                 self.wall_tolerance,
@@ -500,6 +502,8 @@ mod tests {
         for part in [
             "within 0.07 m of each other across it, or 2° over its length",
             "lie within 0.07 m of the line fitted to the four, seen at 30° or less",
+            "beyond one end (not both) met nothing within the range, when the other three lie \
+             so and that beam ends short of the line",
             "each within 0.14 m of the other's line, is assumed to be that wall until a later \
              scan",
         ] {

@@ -1717,7 +1717,11 @@ fn below_rule(sensor: &Sensor, at: Point, p: Point, q: Point) -> Option<f64> {
 /// line fitted to them (a step of [`WALL_GAP_LINE`] × `tol` between the two sides leaves
 /// them about that far off), each wall running along that line (its ends within `tol` of
 /// each other across it, or [`WALL_GAP_TILT`] of its length), and the sight line to the
-/// gap's middle meets that line at no more than 30°.
+/// gap's middle meets that line at no more than 30°. On one side (not both) the beam next
+/// to the gap may instead have met nothing within the range: the line is then fitted to the
+/// other three returns, and that beam must end short of it (or within `tol` beyond it): the
+/// wall, if it runs on, lies beyond the range there, where a beam that crossed the line went
+/// through an opening.
 ///
 /// A wall seen at a slant from far away comes back as returns a metre or more apart, and
 /// reading the scan leaves the gaps longer than the shortest window worth a trip as windows
@@ -1731,6 +1735,11 @@ fn below_rule(sensor: &Sensor, at: Point, p: Point, q: Point) -> Option<f64> {
 /// such gaps, with no other scan near, saw nothing new. A chain of such gaps with single
 /// returns between them is read link by link, each link's neighbours being the windows
 /// beside it; a later scan that sees through a gap read so still opens what lies behind.
+/// Such a chain often ends at the range: seen from beside a wall, the returns along it fall
+/// metres apart, and the last gap before the beams that met nothing was left open. On the
+/// warehouse (`nearest_frontier`, seeds 1 to 16), 91 of the 127 scans that saw under 0.5 m²
+/// that no earlier scan saw went to window parts lying within 0.15 m of a wall; 16 of them
+/// were such last gaps (measured on the ground truth).
 pub(super) fn gap_in_a_wall(pieces: &[BoundaryPiece], i: usize, at: Point, tol: f64) -> bool {
     let n = pieces.len();
     if n < 5 {
@@ -1738,31 +1747,41 @@ pub(super) fn gap_in_a_wall(pieces: &[BoundaryPiece], i: usize, at: Point, tol: 
     }
     let BoundaryPiece::Window { from: p, to: q, .. } = pieces[i] else { return false };
     let len = |u: Point, v: Point| (v[0] - u[0]).hypot(v[1] - u[1]);
-    // The return beyond the gap's end `end` along piece `j`, the next piece beyond it being
-    // `beyond`: a wall's far end, or a window's far end when that end is a return (the piece
-    // beyond is no chord of the range circle).
-    let support = |j: usize, beyond: usize, end: Point, before: bool| -> Option<Point> {
+    // What lies beyond the gap's end `end` along piece `j`, the next piece beyond it being
+    // `beyond`: a return (a wall's far end, or a window's far end when that end is a
+    // return), or the point at the range where a window to no return ends.
+    let support = |j: usize, beyond: usize, end: Point, before: bool| -> Option<Beyond> {
         let (a, b) = pieces[j].ends();
         let (near, far) = if before { (b, a) } else { (a, b) };
         if near != end {
             return None;
         }
         match pieces[j] {
-            BoundaryPiece::Wall { .. } => (len(a, b) >= WALL_GAP_SIDE).then_some(far),
+            BoundaryPiece::Wall { .. } => {
+                (len(a, b) >= WALL_GAP_SIDE).then_some(Beyond::Return(far))
+            }
             BoundaryPiece::Window { .. } => match pieces[beyond] {
-                BoundaryPiece::Wall { .. } | BoundaryPiece::Window { .. } => Some(far),
+                BoundaryPiece::Wall { .. } | BoundaryPiece::Window { .. } => {
+                    Some(Beyond::Return(far))
+                }
+                BoundaryPiece::Frontier { .. } => Some(Beyond::Range(far)),
                 _ => None,
             },
             _ => None,
         }
     };
-    let (Some(a), Some(b)) = (
+    let (before, after) = (
         support((i + n - 1) % n, (i + n - 2) % n, p, true),
         support((i + 1) % n, (i + 2) % n, q, false),
-    ) else {
-        return false;
+    );
+    // The returns the line is fitted to, and a beam beyond one end that met nothing.
+    let (line, open): (Vec<Point>, Option<Point>) = match (before, after) {
+        (Some(Beyond::Return(a)), Some(Beyond::Return(b))) => (vec![a, p, q, b], None),
+        (Some(Beyond::Range(f)), Some(Beyond::Return(b))) => (vec![p, q, b], Some(f)),
+        (Some(Beyond::Return(a)), Some(Beyond::Range(f))) => (vec![a, p, q], Some(f)),
+        _ => return false,
     };
-    let (c, d) = fit_line(&[a, p, q, b]);
+    let (c, d) = fit_line(&line);
     let off = |x: Point| (x[0] - c[0]) * d[1] - (x[1] - c[1]) * d[0];
     // A wall beside the gap must run along the line too, not only end near it: four points
     // in two tight pairs (short walls far apart, such as a box's face and the wall behind
@@ -1771,11 +1790,24 @@ pub(super) fn gap_in_a_wall(pieces: &[BoundaryPiece], i: usize, at: Point, tol: 
         !matches!(pieces[j], BoundaryPiece::Wall { .. })
             || (off(far) - off(near)).abs() <= tol.max(WALL_GAP_TILT * len(near, far))
     };
+    // A beam beyond one end that met nothing within the range must not have crossed the
+    // line: the wall, if it runs on, lies beyond the range along that beam.
+    let short_of_line = |f: Point| off(f) * off(at) >= 0.0 || off(f).abs() <= tol;
     let middle = [f64::midpoint(p[0], q[0]), f64::midpoint(p[1], q[1])];
-    [a, p, q, b].iter().all(|&x| off(x).abs() <= 0.5 * WALL_GAP_LINE * tol)
-        && along((i + n - 1) % n, p, a)
-        && along((i + 1) % n, q, b)
+    line.iter().all(|&x| off(x).abs() <= 0.5 * WALL_GAP_LINE * tol)
+        && along((i + n - 1) % n, p, line[0])
+        && along((i + 1) % n, q, line[line.len() - 1])
+        && open.is_none_or(short_of_line)
         && off(at).abs() <= WALL_GAP_SLANT * len(at, middle)
+}
+
+/// What a raw scan saw beyond an end of a gap ([`gap_in_a_wall`]).
+#[derive(Debug, Clone, Copy)]
+enum Beyond {
+    /// A return.
+    Return(Point),
+    /// Nothing: the beam ran to the range and ended at this point.
+    Range(Point),
 }
 
 /// Whether window piece `i` of a raw scan's region seen from `at` is a gap between two walls
@@ -2232,6 +2264,44 @@ mod tests {
         assert_eq!(wall_gap_open([5.0, 3.0], 0.0, 7.0), (true, 0));
         assert_eq!(wall_gap_open([4.0, 3.0], 0.0, 7.0), (false, 1));
         assert_eq!(wall_gap_open(slant, 0.0, 0.1), (true, 0));
+    }
+
+    /// From (1, 2), the wall y = 0 whole to x = 9, a gap between returns on it to x = 10,
+    /// and beyond that a beam that met nothing within the range, ending at `f`: whether
+    /// [`gap_in_a_wall`] reads the gap as wall. With `range_before`, the beam before the wall
+    /// met nothing either.
+    fn gap_before_range(f: Point, range_before: bool) -> bool {
+        let at = [1.0, 2.0];
+        let window =
+            |from: Point, to: Point| BoundaryPiece::Window { from, to, reflex: from, far: to };
+        let top = [1.0, 11.3];
+        let mut pieces = vec![
+            BoundaryPiece::Wall { from: [0.0, 0.0], to: [9.0, 0.0] },
+            window([9.0, 0.0], [10.0, 0.0]),
+            window([10.0, 0.0], f),
+            BoundaryPiece::Frontier { from: f, to: top },
+            BoundaryPiece::Wall { from: top, to: [0.0, 11.3] },
+            BoundaryPiece::Wall { from: [0.0, 11.3], to: [0.0, 0.0] },
+        ];
+        if range_before {
+            pieces[0] = window([0.5, 0.5], [9.0, 0.0]);
+            pieces[5] = BoundaryPiece::Frontier { from: [0.0, 11.3], to: [0.5, 0.5] };
+        }
+        gap_in_a_wall(&pieces, 1, at, 0.07)
+    }
+
+    #[test]
+    fn a_gap_whose_next_beam_met_nothing_short_of_the_wall_line_is_that_wall() {
+        // The beam after the gap's far return, 0.5° on, meets y = 0 at 9.62 m; with a range
+        // of 9.3 m it ends at (10.10, 0.07), short of the line: the wall may run on beyond
+        // the range, and the gap, on the line of the wall before it, is that wall.
+        assert!(gap_before_range([10.10, 0.067], false));
+        // Ending within the wall tolerance beyond the line, the same.
+        assert!(gap_before_range([10.10, -0.05], false));
+        // A beam that crossed the line and met nothing went through an opening there.
+        assert!(!gap_before_range([10.3, -0.6], false));
+        // Nothing seen on either side: no line to read the gap on.
+        assert!(!gap_before_range([10.10, 0.067], true));
     }
 
     /// The hall of [`wall_gap_open`] seen from (1, 2): its bottom wall whole to x = 6, then
