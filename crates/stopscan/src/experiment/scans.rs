@@ -131,20 +131,20 @@ pub fn scan_pairs(
     }
     errors.sort_by(f64::total_cmp);
     turns.sort_by(f64::total_cmp);
-    let at = |v: &[f64], q: f64| {
+    // The nearest-rank percentile `q` of sorted values (0 for none).
+    let percentile = |v: &[f64], q: f64| {
         if v.is_empty() { 0.0 } else { v[((v.len() - 1) as f64 * q).round() as usize] }
     };
-    let pct = |q: f64| at(&errors, q);
     ScanPairs {
         trials: done,
         converged,
         converged_share: if done > 0 { converged as f64 / done as f64 } else { 0.0 },
         fallbacks,
         degenerate,
-        position_error_median: pct(0.5),
-        position_error_p95: pct(0.95),
-        heading_error_median: at(&turns, 0.5),
-        heading_error_p95: at(&turns, 0.95),
+        position_error_median: percentile(&errors, 0.5),
+        position_error_p95: percentile(&errors, 0.95),
+        heading_error_median: percentile(&turns, 0.5),
+        heading_error_p95: percentile(&turns, 0.95),
         ingest_ms: 1e3 * ingest_s / done.max(1) as f64,
         icp_ms: 1e3 * icp_s / done.max(1) as f64,
     }
