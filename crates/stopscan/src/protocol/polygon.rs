@@ -406,12 +406,15 @@ impl Sensor {
                  lie so and that beam ends short of the line, or within the wall tolerance \
                  beyond it (explore_lite's raster: such a window, or one between two such walls each within {} m of \
                  the other's line, is assumed to be that wall until a later scan holds its \
-                 cells or sees through it)",
+                 cells or sees through it; and a frontier cluster whose cells farther than {} m \
+                 from every wall seen or assumed span less than half of min_frontier_size is \
+                 no frontier: scans place one wall a few centimetres apart)",
                 self.wall_tolerance,
                 WALL_GAP_TILT.asin().to_degrees().round(),
                 0.5 * WALL_GAP_LINE * self.wall_tolerance,
                 WALL_GAP_SLANT.asin().to_degrees().round(),
-                WALL_GAP_LINE * self.wall_tolerance
+                WALL_GAP_LINE * self.wall_tolerance,
+                self.wall_tolerance
             )
         } else {
             windows
@@ -506,6 +509,8 @@ mod tests {
              so and that beam ends short of the line",
             "each within 0.14 m of the other's line, is assumed to be that wall until a later \
              scan",
+            "a frontier cluster whose cells farther than 0.07 m from every wall seen or assumed \
+             span less than half of min_frontier_size is no frontier",
         ] {
             assert!(raw.rule().contains(part), "{part}: {}", raw.rule());
         }
