@@ -187,8 +187,8 @@ pub enum InvalidExploreLiteParams {
 ///   scan that placed it farther frees cells beyond the wall another scan placed nearer, and
 ///   the unknown cells beyond them are a frontier all along the wall (a rack's end on the
 ///   warehouse: the same cluster chosen twice, each scan seeing nothing new). A cluster
-///   with fewer cells farther than the sensor's wall tolerance from every wall seen or
-///   assumed than half of `min_frontier_size` is no frontier. A window reaches away from
+///   whose cells farther than the sensor's wall tolerance from every wall seen or assumed
+///   span less than half of `min_frontier_size` is no frontier. A window reaches away from
 ///   the walls at its ends; it keeps its cluster whole, the cells beside the walls included.
 ///   Dropping every cell near a wall instead cut short windows below `min_frontier_size`
 ///   (lse_arena: 3 of 10 runs below 99%, one 96.7%). See the README's raw-scan figures.
@@ -358,8 +358,9 @@ impl ExploreLite {
         }
     }
 
-    /// How near a wall seen an unknown cell is no frontier, cells ([`Raster::frontiers`]):
-    /// the sensor's wall tolerance (raw scans), 0 for the exact sensor.
+    /// Within how many cells of a wall seen a frontier cell lies along that wall
+    /// ([`Raster::frontiers`]): the sensor's wall tolerance (raw scans), 0 for the exact
+    /// sensor.
     fn wall_cells(&self) -> i64 {
         if self.wall_tolerance > 0.0 && self.raster.res > 0.0 {
             (self.wall_tolerance / self.raster.res).ceil() as i64
