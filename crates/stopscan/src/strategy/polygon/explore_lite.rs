@@ -653,13 +653,15 @@ impl Raster {
                         }
                     }
                     let size = cells.len();
-                    let away = if wall_cells > 0 {
-                        cells.iter().filter(|&&c| !self.wall_within(c, wall_cells)).count()
-                    } else {
-                        size
+                    // Only on raw scans, and only for a cluster long enough to count.
+                    let along_walls = || {
+                        let away =
+                            cells.iter().filter(|&&c| !self.wall_within(c, wall_cells)).count();
+                        (away as f64) * self.res < 0.5 * params.min_frontier_size
                     };
-                    let along_walls = (away as f64) * self.res < 0.5 * params.min_frontier_size;
-                    if size as f64 * self.res >= params.min_frontier_size && !along_walls {
+                    if size as f64 * self.res >= params.min_frontier_size
+                        && !(wall_cells > 0 && along_walls())
+                    {
                         let centroid = [sum[0] / size as f64, sum[1] / size as f64];
                         let cost = params.potential_scale * min_distance
                             - params.gain_scale * size as f64 * self.res;
