@@ -36,7 +36,8 @@
 //!   the exact run's scans 27 → 24; seeds 41 to 60, 9 → 4 and 15 → 13; `bench floors` and
 //!   the 16 other offices as they were, to 2 s). The trip is then driven to its end and the
 //!   scan taken: no goal is switched mid-trip.
-//! - **Routes.** For a robot with a footprint, the shortest way through what was seen: the
+//! - **Routes** ([`super::roads`], which the other window strategies drive along too on raw
+//!   scans). For a robot with a footprint, the shortest way through what was seen: the
 //!   raster's safe cells (every cell within `k` free, `k · res` at least the clearance; the
 //!   cell is fitted so that a whole number of cells spans it, about 10 cm at 20 m) are
 //!   searched by Dijkstra's algorithm from the robot once per decision, which prices every
@@ -214,9 +215,9 @@
 use serde::{Deserialize, Serialize};
 
 use super::known::{self, Known, Target};
-use super::raster::{CELL, DEPTH, Entry, Raster, STEP, Stops, rays_through};
+use super::raster::{DEPTH, Stops, rays_through};
+use super::roads::{Roads, SeenRaster};
 use super::{PolygonFeedback, PolygonStrategy};
-use crate::algorithm::visibility::BoundaryPiece;
 use crate::kernel::Point;
 use crate::protocol::Action;
 use crate::protocol::polygon::RobotSetup;
@@ -257,9 +258,6 @@ const CORNERS: usize = 16;
 /// again by every scan there.
 const NOTHING_SEEN: f64 = 0.01;
 
-/// How many safe cells near a viewpoint are tried as the end of the road to it.
-const ROAD_ENDS: usize = 32;
-
 /// With a price per move, how many of the best-rated candidates get their routes priced
 /// whole.
 const FINALISTS: usize = 8;
@@ -278,34 +276,6 @@ pub struct CostAware {
     seen: SeenRaster,
 }
 
-/// The occupancy raster of the views, how many of them it holds, and their bounding box.
-#[derive(Debug, Clone, Default)]
-struct SeenRaster {
-    raster: Option<Raster>,
-    views: usize,
-    bounds: Option<[Point; 2]>,
-    /// The length scale of the predicted gain ([`CostAware::scale`]).
-    scale: f64,
-    /// The inflation of the raster's safe cells, cells (0 for a point robot, whose routes
-    /// follow the tree of moves).
-    k: i64,
-}
-
-/// The robot's ways through safe cells of the raster from where it stands: its first steps
-/// and the cost of the cheapest path to every cell ([`Raster::distances`]).
-struct Roads {
-    at: Point,
-    entries: Vec<Entry>,
-    dist: Vec<u64>,
-}
-
-impl PartialEq for SeenRaster {
-    /// Derived from the views: equal whenever the views are.
-    fn eq(&self, _: &Self) -> bool {
-        true
-    }
-}
-
 impl CostAware {
     /// A fresh strategy for a robot ([`RobotSetup`]): its cost model prices the trips, its
     /// sensor's range caps the predicted gain, its footprint and window rule apply.
@@ -313,56 +283,10 @@ impl CostAware {
         Self { setup: setup.clone(), known: Known::for_robot(setup), seen: SeenRaster::default() }
     }
 
-    /// Brings the raster up to date with the views. The length scale is the range, or
-    /// without one how far the first view reached.
+    /// Brings the raster up to date with the views, walls assumed to run on behind their
+    /// windows ([`ASSUMED_WALL`]).
     fn sync_raster(&mut self) {
-        let n = self.known.views.len();
-        if self.seen.views >= n || n == 0 {
-            return;
-        }
-        let footprint = &self.setup.footprint;
-        if self.seen.raster.is_none() {
-            let scale = self.known.raster_scale();
-            self.seen.scale = scale;
-            let mut res = scale * CELL;
-            if !footprint.is_point() {
-                // A whole number of cells spans the clearance (at a scale the map's later
-                // scans do not exceed), as in explore_lite, so that passages lose no more
-                // than the rounding of the safe cells' box.
-                let mag = crate::kernel::magnitude(self.known.region_of(0).0);
-                let c = footprint.planning_clearance((4.0 * mag).max(1000.0));
-                res = c / (c / res).round().max(1.0);
-            }
-            self.seen.raster = Some(Raster::new(res));
-        }
-        let scale = self.seen.scale;
-        let Some(raster) = self.seen.raster.as_mut() else { return };
-        for v in self.seen.views..n {
-            let (poly, pieces) = self.known.region_of(v);
-            raster.scale = raster.scale.max(crate::kernel::magnitude(poly)).max(1.0);
-            let changed = raster.add_view(poly, pieces, self.known.viewpoint(v));
-            for (a, b) in assumed_walls(pieces, ASSUMED_WALL * scale) {
-                raster.assume_wall(a, b);
-            }
-            if !footprint.is_point() {
-                // The safe cells: every cell within k free, k·res at least the clearance.
-                let k = (footprint.planning_clearance(raster.scale) / raster.res).ceil() as i64;
-                if k != self.seen.k {
-                    self.seen.k = k;
-                    raster.update_safe_everywhere(k);
-                } else if let Some((lo, hi)) = changed {
-                    raster.update_safe(lo, hi, k);
-                }
-            }
-            let [lo, hi] = crate::algorithm::cover::bounds_of(poly);
-            self.seen.bounds = Some(match self.seen.bounds {
-                None => [lo, hi],
-                Some([l, h]) => {
-                    [[l[0].min(lo[0]), l[1].min(lo[1])], [h[0].max(hi[0]), h[1].max(hi[1])]]
-                }
-            });
-        }
-        self.seen.views = n;
+        self.seen.sync(&self.known, Some(ASSUMED_WALL));
     }
 
     /// The predicted new area of a scan at `z`: unknown space seen along rays through the open
@@ -384,111 +308,13 @@ impl CostAware {
     /// the tree of moves, given the `route` from `cur` to the target's view.
     fn secs(&self, cur: usize, t: &Target, route: &Route, roads: Option<&Roads>) -> f64 {
         let cost = self.setup.cost;
-        if let Some(d) = roads.and_then(|r| self.road_length(r, t.at)) {
+        if let Some(d) = roads.and_then(|r| self.seen.road_length(r, t.at)) {
             return cost.move_time + d / cost.speed + cost.scan_time;
         }
         let (steps, len) = self.known.trip_to(cur, t, route);
         let dist = len + self.known.approach_length(t);
         let moves = steps + t.via.len() + 1;
         cost.move_time * moves as f64 + dist / cost.speed + cost.scan_time
-    }
-
-    /// The robot's roads from view `cur`'s viewpoint: `None` for a point robot, or when no
-    /// safe cell is within its reach.
-    fn roads(&self, cur: usize) -> Option<Roads> {
-        let raster = self.seen.raster.as_ref().filter(|_| self.seen.k > 0)?;
-        let at = self.known.viewpoint(cur);
-        let poly = self.known.region_of(cur).0;
-        let c = self.known.clearance(cur);
-        let entries = raster.entries(at, Some(poly), c, self.seen.k, self.known.relaxed());
-        if entries.is_empty() {
-            return None;
-        }
-        let dist = raster.distances(&entries);
-        Some(Roads { at, entries, dist })
-    }
-
-    /// The safe cells near `z` the roads reach, with the length of the way to `z` through
-    /// each (the road to the cell's centre, then straight on), shortest first.
-    fn road_ends(&self, roads: &Roads, z: Point) -> Vec<(f64, usize)> {
-        let mut out: Vec<(f64, usize)> = self.ends_near(roads, z).collect();
-        out.sort_by(|a, b| a.0.total_cmp(&b.0).then(a.1.cmp(&b.1)));
-        out
-    }
-
-    /// The safe cells within `k + 3` cells of `z` the roads reach, with the length of the way
-    /// to `z` through each, in no particular order.
-    fn ends_near<'a>(
-        &'a self,
-        roads: &'a Roads,
-        z: Point,
-    ) -> impl Iterator<Item = (f64, usize)> + 'a {
-        let raster = self.seen.raster.as_ref();
-        let r = self.seen.k + 3;
-        let zc = raster.map_or([0, 0], |ra| ra.cell_of(z));
-        raster.into_iter().flat_map(move |ra| {
-            (zc[1] - r..=zc[1] + r).flat_map(move |y| {
-                (zc[0] - r..=zc[0] + r).filter_map(move |x| {
-                    let i = ra.local([x, y])?;
-                    let d = roads.dist[i];
-                    (d != u64::MAX).then(|| {
-                        let q = ra.centre([x, y]);
-                        (d as f64 * ra.res / STEP as f64 + (q[0] - z[0]).hypot(q[1] - z[1]), i)
-                    })
-                })
-            })
-        })
-    }
-
-    /// Fewer waypoints: from the robot and then from each waypoint kept, straight on to the
-    /// farthest later one the move reaches keeping the clearance `c` from the boundary of the
-    /// union of the views' regions (the safe cells' inflation is rounded up to whole cells,
-    /// so their paths turn more often than the space seen requires). Every move of a real
-    /// robot is a goal of its own to its navigation stack.
-    fn straighten(&self, from: Point, pts: &[Point], c: f64) -> Vec<Point> {
-        let mut out = Vec::with_capacity(pts.len());
-        let (mut at, mut i) = (from, 0);
-        while i < pts.len() {
-            let j = (i + 1..pts.len())
-                .rev()
-                .find(|&j| self.known.clear_in_seen(at, pts[j], c))
-                .unwrap_or(i);
-            out.push(pts[j]);
-            at = pts[j];
-            i = j + 1;
-        }
-        out
-    }
-
-    /// The length of the way to `z` along the roads, if they come near it.
-    fn road_length(&self, roads: &Roads, z: Point) -> Option<f64> {
-        self.ends_near(roads, z).map(|e| e.0).min_by(f64::total_cmp)
-    }
-
-    /// The waypoints of a route to `z` along the roads, ending at `z`: through safe cells to
-    /// the nearest cell near `z` from whose centre the last leg keeps the clearance (in safe
-    /// cells, in the union of the views' regions, or inside one view's region), corners cut
-    /// while the moves stay in safe cells.
-    fn road_to(&self, roads: &Roads, z: Point) -> Option<Vec<Point>> {
-        let raster = self.seen.raster.as_ref()?;
-        let c = self.setup.footprint.planning_clearance(raster.scale);
-        for (_, cell) in self.road_ends(roads, z).into_iter().take(ROAD_ENDS) {
-            let q = raster.centre(raster.global(cell));
-            if !(q == z
-                || raster.segment_is_safe(q, z)
-                || self.known.clear_in_seen(q, z, c)
-                || self.known.straight_in_a_view(q, z))
-            {
-                continue;
-            }
-            let path = raster.astar(&roads.entries, cell)?;
-            let mut pts = raster.compress(roads.at, &roads.entries, &path)?;
-            if pts.last() != Some(&z) {
-                pts.push(z);
-            }
-            return Some(self.straighten(roads.at, &pts, c));
-        }
-        None
     }
 
     /// The candidates for target `t`: its own viewpoint, the points stepped back from it, and
@@ -534,7 +360,7 @@ impl CostAware {
         if open.is_empty() {
             return Action::Done;
         }
-        let roads = self.roads(cur);
+        let roads = self.seen.roads(&self.known, cur);
         if roads.is_some() {
             self.known.update_seen();
         }
@@ -576,7 +402,7 @@ impl CostAware {
         let finalists = if cost.move_time > 0.0 { FINALISTS } else { 1 };
         for &i in order.iter().take(finalists) {
             let (rate, gain, z) = &ranked[i];
-            let road = roads.as_ref().and_then(|r| self.road_to(r, z.at));
+            let road = roads.as_ref().and_then(|r| self.seen.road_to(&self.known, r, z.at));
             let rate = match (&road, cost.move_time > 0.0) {
                 (Some(pts), true) => {
                     let len = known::path_length(self.known.viewpoint(cur), pts);
@@ -592,59 +418,14 @@ impl CostAware {
         }
         let Some((_, i, road)) = best else { return Action::Done };
         let t = ranked.swap_remove(i).2;
-        let road = road.or_else(|| roads.as_ref().and_then(|r| self.road_then_tree(r, cur, &t)));
+        let road = road.or_else(|| {
+            roads.as_ref().and_then(|r| self.seen.road_then_tree(&self.known, r, cur, &t))
+        });
         match road {
             Some(pts) => self.known.go_along(pts, t),
             None => self.known.go_shortcut(cur, t),
         }
     }
-
-    /// Where no safe cell near the viewpoint of `t` leads on to it (a viewpoint in a narrow
-    /// place, planned at the clearance inside its view's region, that the safe cells' rounded
-    /// inflation closes): the roads to the last waypoint of the tree of moves toward it that
-    /// they reach, then the tree's moves on from there. Along the tree alone, from where the
-    /// robot stands, the trip went back through every viewpoint between (on depot, raw scans,
-    /// seed 2: 37.7 m for a hop of 2 m).
-    fn road_then_tree(&self, roads: &Roads, cur: usize, t: &Target) -> Option<Vec<Point>> {
-        let tree = self.known.tree_route(cur, t);
-        (0..tree.len() - 1).rev().find_map(|j| {
-            let mut pts = self.road_to(roads, tree[j])?;
-            pts.extend_from_slice(&tree[j + 1..]);
-            Some(pts)
-        })
-    }
-}
-
-/// Where the walls beside a region's windows are assumed to run on behind them, for the
-/// predicted gain: the wall piece that a window's far end lies on, extended beyond that end
-/// by `len` (the wall the window's ray met runs on out of sight).
-fn assumed_walls(pieces: &[BoundaryPiece], len: f64) -> Vec<(Point, Point)> {
-    let n = pieces.len();
-    let mut out = Vec::new();
-    for (i, piece) in pieces.iter().enumerate() {
-        let BoundaryPiece::Window { far, .. } = *piece else { continue };
-        for j in [(i + 1) % n, (i + n - 1) % n] {
-            let (BoundaryPiece::Edge { from: a, to: b, .. }
-            | BoundaryPiece::Partial { from: a, to: b, .. }
-            | BoundaryPiece::Wall { from: a, to: b }) = pieces[j]
-            else {
-                continue;
-            };
-            let (end, other) = if a == far {
-                (a, b)
-            } else if b == far {
-                (b, a)
-            } else {
-                continue;
-            };
-            let (dx, dy) = (end[0] - other[0], end[1] - other[1]);
-            let l = dx.hypot(dy);
-            if l > 0.0 {
-                out.push((end, [end[0] + len * dx / l, end[1] + len * dy / l]));
-            }
-        }
-    }
-    out
 }
 
 impl PolygonStrategy for CostAware {
@@ -668,8 +449,10 @@ impl PolygonStrategy for CostAware {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::algorithm::visibility::BoundaryPiece;
     use crate::geometry::EdgeId;
     use crate::strategy::polygon::raster::RAYS;
+    use crate::strategy::polygon::roads::assumed_walls;
 
     #[test]
     fn rays_through_a_gap_are_those_between_its_ends() {

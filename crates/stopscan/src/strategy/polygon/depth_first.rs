@@ -107,13 +107,15 @@ impl DepthFirst {
                 if t.base() != top {
                     route.extend(self.known.route(top, t.base()).0);
                 }
-                return self.known.go(route, t);
+                return self.known.go_route(v, route, t);
             }
             self.stack.pop();
             if let Some(&next) = self.stack.last() {
                 // The search path is the tree of moves: back the way the robot came (to the
                 // view below on the stack, which is the parent unless the scan's trip started
-                // from another view, see `Target::base`).
+                // from another view, see `Target::base`). On raw scans the robot drives the
+                // shortest way through what was seen to the next target instead
+                // (`Known::go_route`); the search is the same.
                 route.extend(self.known.route(top, next).0);
                 here = next;
             }

@@ -5,7 +5,9 @@
 //! middle of its first uncovered part, see [`super::known`]), so the comparison with
 //! `depth_first` and `nearest_frontier` is about the choice only. The cost of a candidate is
 //! what the cost model charges for getting there along the tree of moves and scanning:
-//! `move_time · moves + distance / speed + scan_time`.
+//! `move_time · moves + distance / speed + scan_time`. (On raw scans with a footprint the
+//! trip is driven along the shortest way through what was seen instead,
+//! [`Known::go_route`]; it is priced as before, so the choice is the same.)
 //!
 //! Before a scan nobody knows the area behind a window. The prediction used here (stated in
 //! the strategy's output as `gain`) is the half-disc on the window's uncovered length `ℓ`,

@@ -4,6 +4,8 @@
 //!
 //! - `known`: what every polygon strategy knows (views, windows, the tree of moves) and the one
 //!   feedback loop they share;
+//! - `roads`: routes through the safe cells of a raster of the views (`cost_aware`'s trips,
+//!   and every window strategy's on raw scans);
 //! - `depth_first`: [`DepthFirst`], the paper's algorithm (at most r + 1 scans);
 //! - `range_limited`: [`RangeLimited`], the paper's algorithm with a range restriction
 //!   (Lemma 4);
@@ -26,6 +28,7 @@ mod known;
 mod nearest_frontier;
 mod range_limited;
 mod raster;
+mod roads;
 mod trip;
 
 pub use cost_aware::CostAware;

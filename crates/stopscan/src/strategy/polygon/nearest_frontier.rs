@@ -1,6 +1,9 @@
 //! Nearest-frontier exploration (Yamauchi's frontier-based exploration, with the windows of
 //! the regions seen as frontiers): after each scan, go to the closest point from which an
 //! unexplored window can be looked through, travelling along the tree of moves, and scan.
+//! (On raw scans with a footprint the trip to it is driven along the shortest way through
+//! what was seen instead, [`Known::go_route`]; the choice, nearest along the tree, is the
+//! same.)
 //!
 //! It shares the window bookkeeping of the paper's algorithm; only the choice of the next
 //! window differs (the nearest by travel distance instead of depth first), so the two can be

@@ -23,7 +23,9 @@
 //!   `CP` is all polygonal edges.
 //!
 //! Moves go straight within the region of the view a target belongs to, and between views
-//! along the tree of moves, so every move is in seen free space. Without a range limit the
+//! along the tree of moves, so every move is in seen free space (on raw scans with a
+//! footprint, along the shortest way through the safe cells of a raster of what was seen,
+//! [`Known::go_route`]). Without a range limit the
 //! algorithm still works (it follows walls to the windows), but the paper's algorithm for
 //! that case is `depth_first`.
 
